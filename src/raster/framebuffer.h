@@ -1,0 +1,74 @@
+// The four buffers of SPEC.md §1: colour, depth, stencil, accumulation. Each exists only once a
+// pass asks for it (Framebuffer::ensure*), so a scene that never uses stencil never allocates it.
+// Pixel (x, y) is at index y * width + x with row 0 at the bottom, as glReadPixels returns it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace shadowref {
+
+enum class DepthFormat : uint8_t {
+  Float32,  // GL_DEPTH_COMPONENT32F: the default, the reference
+  Unorm24,  // GL_DEPTH_COMPONENT24: what most GL implementations (and Mesa) offer
+};
+
+// Depth values are kept as 32-bit codes whose unsigned order is the depth order: for Float32 the
+// IEEE bits of a non-negative float (positive floats sort like their bit patterns), for Unorm24
+// round(z * (2^24 - 1)). The depth test therefore compares integers, exactly as the buffer holds
+// them, after the fragment depth has been converted to the buffer's format (GL 2.1 §4.1.5).
+struct DepthCodec {
+  DepthFormat format = DepthFormat::Float32;
+  uint32_t encode(double z) const;  // z is clamped to [0, 1] first
+  double decode(uint32_t code) const;
+  // The minimum resolvable difference r of the polygon offset formula at depth z (GL 1.1 §3.5.5).
+  double resolvableDifference(double zMax) const;
+};
+
+class Framebuffer {
+ public:
+  Framebuffer(int width, int height, DepthFormat depthFormat = DepthFormat::Float32);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const DepthCodec& depthCodec() const { return depthCodec_; }
+
+  void ensureColor();
+  void ensureDepth();
+  void ensureStencil();
+  void ensureAccum();
+  bool hasColor() const { return !color_.empty(); }
+  bool hasDepth() const { return !depth_.empty(); }
+  bool hasStencil() const { return !stencil_.empty(); }
+  bool hasAccum() const { return !accum_.empty(); }
+
+  size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
+
+  // Colour is RGBA float, clamped to [0, 1] on every write like a fixed-point GL colour buffer.
+  std::vector<glm::vec4>& color() { return color_; }
+  const std::vector<glm::vec4>& color() const { return color_; }
+  std::vector<uint32_t>& depthCodes() { return depth_; }
+  const std::vector<uint32_t>& depthCodes() const { return depth_; }
+  std::vector<uint8_t>& stencil() { return stencil_; }
+  const std::vector<uint8_t>& stencil() const { return stencil_; }
+  // Accumulation is RGBA float and unclamped (GL keeps signed values in [-1, 1]).
+  std::vector<glm::vec4>& accum() { return accum_; }
+  const std::vector<glm::vec4>& accum() const { return accum_; }
+
+  glm::vec4 colorAt(int x, int y) const { return color_[index(x, y)]; }
+  double depthAt(int x, int y) const { return depthCodec_.decode(depth_[index(x, y)]); }
+  uint8_t stencilAt(int x, int y) const { return stencil_[index(x, y)]; }
+  glm::vec4 accumAt(int x, int y) const { return accum_[index(x, y)]; }
+
+ private:
+  int width_, height_;
+  DepthCodec depthCodec_;
+  std::vector<glm::vec4> color_;
+  std::vector<uint32_t> depth_;
+  std::vector<uint8_t> stencil_;
+  std::vector<glm::vec4> accum_;
+};
+
+}  // namespace shadowref

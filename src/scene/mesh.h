@@ -1,0 +1,60 @@
+// A triangle mesh as the renderer and the shadow algorithms see it (SPEC.md §2).
+//
+// Two views of the same triangles, index for index:
+//  - the render view: vertices with their own normals (split at seams and creases), for shading;
+//  - the welded view: one vertex per distinct position, for adjacency (000 §4.3.5). Welding is by
+//    exact position, so a welded vertex has bit-for-bit the coordinates of the render vertices it
+//    stands for, and the shadow-volume front cap transforms exactly as the scene pass did.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace shadowref {
+
+struct Aabb {
+  glm::dvec3 min{std::numeric_limits<double>::infinity()};
+  glm::dvec3 max{-std::numeric_limits<double>::infinity()};
+  bool empty() const { return min.x > max.x; }
+  void add(const glm::dvec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
+  glm::dvec3 center() const { return (min + max) * 0.5; }
+};
+
+inline constexpr uint32_t kNoTriangle = std::numeric_limits<uint32_t>::max();
+
+// An edge of the welded mesh with the triangles on either side (000 §4.3.5).
+// v0 -> v1 is the direction in which the edge runs in triangle t0 (counter-clockwise);
+// a consistently wound neighbour t1 runs it v1 -> v0. t1 == kNoTriangle for an open edge.
+struct Edge {
+  uint32_t v0 = 0, v1 = 0;
+  uint32_t t0 = kNoTriangle, t1 = kNoTriangle;
+  uint32_t triangleCount = 0;  // 1 open, 2 manifold, >= 3 non-manifold
+};
+
+enum class Topology : uint8_t { Closed, Open, NonManifold };
+
+struct Mesh {
+  std::string name;
+
+  // Render view.
+  std::vector<glm::dvec3> positions;
+  std::vector<glm::dvec3> normals;       // one per render vertex, unit length
+  std::vector<glm::uvec3> triangles;     // counter-clockwise seen from outside
+
+  // Welded view (built by buildAdjacency in adjacency.h).
+  std::vector<glm::dvec3> weldedPositions;
+  std::vector<glm::uvec3> weldedTriangles;  // weldedTriangles[i] is triangles[i], welded
+  std::vector<uint32_t> weldIndex;          // render vertex -> welded vertex
+  std::vector<Edge> edges;
+  std::vector<glm::dvec3> faceNormals;      // unit, one per triangle, from the welded positions
+  Topology topology = Topology::Closed;
+  size_t openEdges = 0, nonManifoldEdges = 0;
+
+  Aabb bounds;  // object space
+};
+
+}  // namespace shadowref

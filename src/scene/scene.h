@@ -1,0 +1,131 @@
+// The scene model (SPEC.md §2): what a scene file describes, after loading and validation.
+// Plain data; the loader (scene_loader.h) and the generators (generators.h) produce it, the
+// renderer and the shadow algorithms read it.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raster/framebuffer.h"
+#include "scene/mesh.h"
+
+namespace shadowref {
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Camera {
+  glm::dvec3 eye{0.0, 0.0, 5.0};
+  glm::dvec3 target{0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fovYDegrees = 60.0;
+  double nearPlane = 0.1;
+  double farPlane = kInfinity;  // infinity: the infinite projection P_inf (000 §3.3)
+};
+
+enum class ShadingModel : uint8_t { Gouraud, PerPixel };
+
+// Phong illumination (000 §2.3).
+struct Material {
+  std::string name = "default";
+  glm::dvec3 ambient{0.2};
+  glm::dvec3 diffuse{0.8};
+  glm::dvec3 specular{0.0};
+  double shininess = 32.0;
+  ShadingModel shading = ShadingModel::PerPixel;
+  bool blinn = false;  // Blinn-Phong half vector instead of the reflection vector
+};
+
+enum class LightType : uint8_t { Point, Directional, Spot };
+
+// How a light is spread into several for soft shadows (000 §3.6, 002 §4.2).
+enum class SoftShape : uint8_t {
+  None,
+  SquareX, SquareY, SquareZ,  // the light plus 8 lights on a square in that plane (000 §3.6)
+  Sphere14,                   // the light plus 14 on a sphere: 6 axis + 8 diagonal (000 §3.6)
+  AreaEdge16,                 // 16 lights evenly on the edge of a square area light (002 §4.2)
+};
+
+struct Light {
+  std::string name;
+  LightType type = LightType::Point;
+  glm::dvec3 position{0.0, 5.0, 0.0};    // point and spot
+  glm::dvec3 direction{0.0, -1.0, 0.0};  // spot: axis; directional: the direction light travels
+  glm::dvec3 color{1.0};                 // diffuse and specular intensity
+  double range = kInfinity;              // 000 §4.3.1
+  double spotCutoffDegrees = 45.0;
+  double spotExponent = 0.0;
+  glm::dvec3 attenuation{1.0, 0.0, 0.0}; // constant, linear, quadratic
+  SoftShape soft = SoftShape::None;
+  double softSpacing = 0.1;              // distance of the extra lights, or the area's side
+
+  // The light as a homogeneous point: (position, 1), or for a directional light the direction
+  // towards the light with w = 0 (L_w of 000 §4.3.3).
+  glm::dvec4 homogeneous() const {
+    if (type == LightType::Directional) return glm::dvec4(-glm::normalize(direction), 0.0);
+    return glm::dvec4(position, 1.0);
+  }
+};
+
+enum class ShadowMethod : uint8_t { None, ZPass, ZFail, Auto, ShadowMap, Trapezoidal };
+enum class SilhouetteAlgorithm : uint8_t { Kuhn, YenKwoon, Kilgard, Lengyel };
+
+// Parameters of the shadow algorithms; each issue that implements a method owns its fields.
+struct ShadowSettings {
+  ShadowMethod method = ShadowMethod::None;
+  // Shadow volumes (000, 003, 004)
+  SilhouetteAlgorithm silhouette = SilhouetteAlgorithm::Kuhn;
+  bool twoSidedStencil = true;   // one pass with front/back stencil state, or two culled passes
+  bool wrapOps = true;           // INCR_WRAP/DECR_WRAP; false: saturating INCR/DECR
+  bool darkenComposite = false;  // 003: lit scene first, then ambient again where stencil != 0
+  // Shadow maps (002)
+  int mapSize = 1024;
+  double offsetFactor = 1.1, offsetUnits = 4.0;  // polygon offset in the map pass
+  double constantBias = 0.0;
+  bool backFacesOnly = false;
+  int pcf = 1;                    // k x k percentage-closer filtering; 1 = nearest
+  double compareFail = 0.4;       // 002 §5.1.2
+  double focusRegion = 0.4;       // TSM 80 % rule (002 §4.1)
+};
+
+struct Node {
+  std::string name;
+  glm::dmat4 local{1.0};
+  int mesh = -1;          // index into Scene::meshes, -1 for a pure transform node
+  int material = 0;       // index into Scene::materials
+  bool castShadows = true;
+  int shadowProxy = -1;   // low-poly mesh used for the volumes instead of `mesh` (004)
+  std::vector<Node> children;
+};
+
+// A mesh placed in the world: the flattened scene graph.
+struct Instance {
+  std::string path;       // node names from the root, "room/table/leg0"
+  const Mesh* mesh = nullptr;
+  const Mesh* shadowMesh = nullptr;  // mesh or its proxy; nullptr when it casts no shadow
+  glm::dmat4 world{1.0};
+  int material = 0;
+  Aabb worldBounds;
+};
+
+struct Scene {
+  std::string sourceFile;  // for messages; "<builtin:room>" for generators
+  int width = 800, height = 640;
+  DepthFormat depthFormat = DepthFormat::Float32;
+  Camera camera;
+  glm::dvec3 ambient{0.2};  // global ambient light
+  glm::dvec3 background{0.0};
+  std::vector<Light> lights;
+  std::vector<Material> materials{Material{}};
+  std::vector<std::shared_ptr<Mesh>> meshes;
+  std::vector<Node> roots;
+  ShadowSettings shadow;
+
+  std::vector<Instance> instances() const;  // depth-first, children after their parent
+};
+
+}  // namespace shadowref
