@@ -53,6 +53,9 @@ struct Mesh {
   std::vector<glm::dvec3> faceNormals;      // unit, one per triangle, from the welded positions
   Topology topology = Topology::Closed;
   size_t openEdges = 0, nonManifoldEdges = 0;
+  // Manifold edges whose two triangles run them the same way: a neighbour wound the other way
+  // round, so inside and outside disagree (counted by buildAdjacency; 0 for a proper mesh).
+  size_t inconsistentEdges = 0;
 
   Aabb bounds;  // object space
 };

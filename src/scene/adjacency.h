@@ -1,0 +1,38 @@
+// Welding and the edge list of a mesh (000 §4.3.5, SPEC.md §2): what the silhouette algorithms
+// need — every edge with its two vertices and the triangles on either side.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene/mesh.h"
+
+namespace shadowref {
+
+// Fills the welded view of `mesh` from its render view:
+//  - welds render vertices whose positions are bit-for-bit equal (-0.0 counts as +0.0);
+//  - drops degenerate triangles (two equal welded corners, or zero area) from BOTH views and
+//    appends one warning per dropped triangle to `warnings` when given;
+//  - builds the edge list in O(n) with a hash map keyed by the unordered welded vertex pair,
+//    edges in order of first appearance, v0 -> v1 as the edge runs in t0 (000 §4.3.5);
+//  - counts open (1 triangle) and non-manifold (>= 3) edges and sets the topology;
+//  - face normals from the welded positions, object-space bounds.
+// weldedPositions holds every distinct render position, also those used only by dropped triangles.
+void buildAdjacency(Mesh& mesh, std::vector<std::string>* warnings = nullptr);
+
+// Render normals for meshes that come without them (imports, generated surfaces).
+// Flat: every triangle gets three vertices of its own with the face normal.
+void computeFlatNormals(Mesh& mesh);
+// Smooth: each render vertex gets the area-weighted average of the face normals of all triangles
+// touching its position. Render vertices are kept as they are (share them for a smooth surface).
+void computeSmoothNormals(Mesh& mesh);
+// Smooth within a crease angle: each triangle corner averages the face normals around its position
+// whose angle to the triangle's own normal is at most `creaseDegrees`; corners with equal position
+// and equal normal share one render vertex. Sharp edges stay sharp, curved surfaces look smooth.
+void computeCreaseNormals(Mesh& mesh, double creaseDegrees = 40.0);
+
+// Signed volume enclosed by the welded triangles (divergence theorem): positive when a closed
+// mesh is wound counter-clockwise seen from outside.
+double signedVolume(const Mesh& mesh);
+
+}  // namespace shadowref

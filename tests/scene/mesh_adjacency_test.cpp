@@ -1,0 +1,172 @@
+#include <catch2/catch.hpp>
+
+#include "scene/adjacency.h"
+#include "mesh_checks.h"
+
+using namespace shadowref;
+
+namespace {
+
+Mesh fromTriangles(std::vector<glm::dvec3> positions, std::vector<glm::uvec3> triangles) {
+  Mesh m;
+  m.name = "test";
+  m.positions = std::move(positions);
+  m.triangles = std::move(triangles);
+  computeSmoothNormals(m);
+  return m;
+}
+
+// A tetrahedron, counter-clockwise seen from outside.
+Mesh tetrahedron() {
+  return fromTriangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                       {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
+}
+
+}  // namespace
+
+TEST_CASE("a tetrahedron is closed: 4 vertices, 6 edges, 4 faces, volume 1/6", "[mesh]") {
+  Mesh m = tetrahedron();
+  buildAdjacency(m);
+  shadowref::testing::requireClosedOutward(m);
+  CHECK(m.edges.size() == 6);
+  CHECK(signedVolume(m) == Approx(1.0 / 6.0));
+}
+
+TEST_CASE("edges come in order of first appearance, v0 -> v1 as they run in t0", "[mesh]") {
+  Mesh m = tetrahedron();
+  buildAdjacency(m);
+  // Triangle 0 is (0, 2, 1): its edges 0->2, 2->1, 1->0 come first, in that order.
+  REQUIRE(m.edges.size() == 6);
+  CHECK(m.edges[0].v0 == 0);
+  CHECK(m.edges[0].v1 == 2);
+  CHECK(m.edges[1].v0 == 2);
+  CHECK(m.edges[1].v1 == 1);
+  CHECK(m.edges[2].v0 == 1);
+  CHECK(m.edges[2].v1 == 0);
+  CHECK(m.edges[0].t0 == 0);
+  // Edge 1-0 appears again in triangle 1 (0, 1, 3), running 0 -> 1.
+  CHECK(m.edges[2].t1 == 1);
+  // Triangle 1 adds 1->3 and 3->0 as new edges.
+  CHECK(m.edges[3].v0 == 1);
+  CHECK(m.edges[3].v1 == 3);
+  CHECK(m.edges[3].t0 == 1);
+}
+
+TEST_CASE("a single triangle is open with three open edges", "[mesh]") {
+  Mesh m = fromTriangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
+  buildAdjacency(m);
+  CHECK(m.topology == Topology::Open);
+  CHECK(m.openEdges == 3);
+  CHECK(m.nonManifoldEdges == 0);
+  for (const Edge& e : m.edges) CHECK(e.t1 == kNoTriangle);
+}
+
+TEST_CASE("a tetrahedron missing one face is open with exactly three open edges", "[mesh]") {
+  Mesh m = tetrahedron();
+  m.triangles.pop_back();
+  buildAdjacency(m);
+  CHECK(m.topology == Topology::Open);
+  CHECK(m.openEdges == 3);
+  CHECK(m.edges.size() == 6);
+}
+
+TEST_CASE("three triangles on one edge make it non-manifold", "[mesh]") {
+  // Three fins sharing the edge (0,0,0)-(0,0,1).
+  Mesh m = fromTriangles({{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, -1, 0}},
+                         {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
+  buildAdjacency(m);
+  CHECK(m.topology == Topology::NonManifold);
+  CHECK(m.nonManifoldEdges == 1);
+  CHECK(m.openEdges == 6);
+  CHECK(m.edges[0].triangleCount == 3);
+}
+
+TEST_CASE("non-manifold wins over open in the classification", "[mesh]") {
+  Mesh m = fromTriangles({{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, -1, 0}},
+                         {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
+  buildAdjacency(m);
+  CHECK(m.openEdges > 0);
+  CHECK(m.topology == Topology::NonManifold);
+}
+
+TEST_CASE("a neighbour wound the wrong way round is counted as inconsistent", "[mesh]") {
+  Mesh m = tetrahedron();
+  std::swap(m.triangles[3].y, m.triangles[3].z);
+  buildAdjacency(m);
+  CHECK(m.topology == Topology::Closed);  // still two triangles per edge
+  CHECK(m.inconsistentEdges == 3);
+}
+
+TEST_CASE("render vertices at bit-equal positions weld, -0.0 and +0.0 included", "[mesh]") {
+  // Two triangles sharing an edge, the second with its own copies and a negative zero.
+  Mesh m = fromTriangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {-0.0, 1, -0.0}, {1, 1, 0}},
+                         {{0, 1, 2}, {3, 5, 4}});
+  buildAdjacency(m);
+  CHECK(m.weldedPositions.size() == 4);
+  CHECK(m.weldIndex == std::vector<uint32_t>{0, 1, 2, 1, 2, 3});
+  CHECK(m.edges.size() == 5);
+  CHECK(m.openEdges == 4);
+  CHECK(!std::signbit(m.weldedPositions[2].x));
+}
+
+TEST_CASE("positions that differ in the last bit do not weld", "[mesh]") {
+  const double nearlyOne = std::nextafter(1.0, 0.0);
+  Mesh m = fromTriangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {nearlyOne, 0, 0}, {0, 1, 0}, {1, 1, 0}},
+                         {{0, 1, 2}, {3, 5, 4}});
+  buildAdjacency(m);
+  CHECK(m.weldedPositions.size() == 5);
+}
+
+TEST_CASE("degenerate triangles are dropped from both views with a warning each", "[mesh]") {
+  Mesh m = tetrahedron();
+  m.positions.push_back({0.5, 0.5, 0.5});
+  m.positions.push_back({1.0, 1.0, 1.0});
+  m.positions.push_back({2.0, 2.0, 2.0});  // collinear with the previous two: zero area
+  m.normals.resize(m.positions.size(), glm::dvec3(0, 1, 0));
+  m.triangles.insert(m.triangles.begin() + 1, glm::uvec3(4, 5, 6));  // zero area
+  m.triangles.push_back(glm::uvec3(0, 1, 1));                        // repeated corner
+  std::vector<std::string> warnings;
+  buildAdjacency(m, &warnings);
+  REQUIRE(warnings.size() == 2);
+  CHECK(warnings[0].find("triangle 1") != std::string::npos);
+  CHECK(warnings[0].find("zero area") != std::string::npos);
+  CHECK(warnings[1].find("triangle 5") != std::string::npos);
+  CHECK(m.triangles.size() == 4);
+  CHECK(m.weldedTriangles.size() == 4);
+  CHECK(m.faceNormals.size() == 4);
+  CHECK(m.triangles[1] == glm::uvec3(0, 1, 3));  // the tetrahedron's second face moved up
+  shadowref::testing::requireClosedOutward(m);
+}
+
+TEST_CASE("face normals are unit, from the welded positions, and bounds cover them", "[mesh]") {
+  Mesh m = tetrahedron();
+  buildAdjacency(m);
+  CHECK(m.faceNormals[0] == glm::dvec3(0, 0, -1));
+  CHECK(m.faceNormals[3].x == Approx(1.0 / std::sqrt(3.0)));
+  CHECK(m.bounds.min == glm::dvec3(0.0));
+  CHECK(m.bounds.max == glm::dvec3(1.0));
+}
+
+TEST_CASE("building adjacency twice gives the same result", "[mesh]") {
+  Mesh m = tetrahedron();
+  buildAdjacency(m);
+  const size_t edges = m.edges.size();
+  buildAdjacency(m);
+  CHECK(m.edges.size() == edges);
+  CHECK(m.weldedPositions.size() == 4);
+}
+
+TEST_CASE("crease normals keep a cube's corners sharp and split them per face", "[mesh]") {
+  // A cube as 8 shared corners: crease normals must split each corner into 3 render vertices.
+  std::vector<glm::dvec3> c;
+  for (int i = 0; i < 8; ++i) c.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  Mesh m = fromTriangles(c, {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                             {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}});
+  computeCreaseNormals(m, 40.0);
+  buildAdjacency(m);
+  CHECK(m.positions.size() == 24);
+  CHECK(m.weldedPositions.size() == 8);
+  shadowref::testing::requireClosedOutward(m);
+  shadowref::testing::requireNormalsAgreeWithWinding(m);
+  for (const glm::dvec3& n : m.normals) CHECK(std::abs(n.x) + std::abs(n.y) + std::abs(n.z) == Approx(1.0));
+}
