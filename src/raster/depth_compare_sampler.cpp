@@ -1,0 +1,53 @@
+#include "raster/depth_compare_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadowref {
+
+namespace {
+int nearestTexel(double coordinate, int size) {
+  // GL nearest: floor(s * size), then clamp to edge.
+  const double t = std::floor(coordinate * double(size));
+  if (!(t >= 0.0)) return 0;  // also NaN
+  return int(std::min(t, double(size - 1)));
+}
+}  // namespace
+
+double DepthCompareSampler::compareTexel(int x, int y, double r) const {
+  x = std::clamp(x, 0, texture->width - 1);
+  y = std::clamp(y, 0, texture->height - 1);
+  // Depth textures compare in float, as they are stored; r is clamped to [0, 1] (GL 2.1 §3.8.14).
+  const float rf = float(std::clamp(r, 0.0, 1.0));
+  const float d = texture->at(x, y);
+  bool pass = false;
+  switch (func) {
+    case CompareFunc::Never: pass = false; break;
+    case CompareFunc::Less: pass = rf < d; break;
+    case CompareFunc::Equal: pass = rf == d; break;
+    case CompareFunc::LEqual: pass = rf <= d; break;
+    case CompareFunc::Greater: pass = rf > d; break;
+    case CompareFunc::NotEqual: pass = rf != d; break;
+    case CompareFunc::GEqual: pass = rf >= d; break;
+    case CompareFunc::Always: pass = true; break;
+  }
+  return pass ? 1.0 : failValue;
+}
+
+double DepthCompareSampler::sample(const glm::dvec4& strq) const {
+  const double s = strq.x / strq.w, t = strq.y / strq.w, r = strq.z / strq.w;
+  return compareTexel(nearestTexel(s, texture->width), nearestTexel(t, texture->height), r);
+}
+
+double DepthCompareSampler::samplePcf(const glm::dvec4& strq, int k) const {
+  if (k <= 1) return sample(strq);
+  const double s = strq.x / strq.w, t = strq.y / strq.w, r = strq.z / strq.w;
+  const int cx = nearestTexel(s, texture->width), cy = nearestTexel(t, texture->height);
+  const int half = k / 2;
+  double sum = 0.0;
+  for (int dy = -half; dy <= half; ++dy)
+    for (int dx = -half; dx <= half; ++dx) sum += compareTexel(cx + dx, cy + dy, r);
+  return sum / double((2 * half + 1) * (2 * half + 1));
+}
+
+}  // namespace shadowref

@@ -1,0 +1,36 @@
+// The shadow-map texture unit (SPEC.md §1; 002 §3.1, §5.1.2): a depth texture looked up with
+// projective coordinates (s, t, r, q), nearest sampling, clamp to edge, and a depth comparison
+// of r/q against the stored depth (GL_COMPARE_R_TO_TEXTURE, func LEQUAL by default). A passing
+// comparison gives 1, a failing one the compare-fail value (ARB_shadow_ambient; 002 uses 0.4).
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raster/render_state.h"
+
+namespace shadowref {
+
+struct DepthTexture {
+  int width = 0, height = 0;
+  std::vector<float> depth;  // row 0 at the bottom, values in [0, 1]
+  float at(int x, int y) const { return depth[size_t(y) * size_t(width) + size_t(x)]; }
+};
+
+struct DepthCompareSampler {
+  const DepthTexture* texture = nullptr;
+  CompareFunc func = CompareFunc::LEqual;
+  double failValue = 0.4;
+
+  // Nearest texel, clamp to edge; returns 1 when (r/q func D) holds, otherwise failValue.
+  double sample(const glm::dvec4& strq) const;
+  // k x k percentage-closer filtering around the nearest texel (k odd): the mean of the k^2
+  // comparisons, each 1 or failValue.
+  double samplePcf(const glm::dvec4& strq, int k) const;
+
+ private:
+  double compareTexel(int x, int y, double r) const;
+};
+
+}  // namespace shadowref

@@ -1,0 +1,46 @@
+// The pluggable shading stage: everything that computes a colour (lighting, shadow-map lookups)
+// lives outside the rasterizer behind this interface (issue 2).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "raster/render_state.h"
+
+namespace shadowref {
+
+struct FragmentInput {
+  int x = 0, y = 0;          // pixel; its centre is (x + 0.5, y + 0.5)
+  double depth = 0.0;        // window depth after offset and clamping
+  Facing facing = FrontFacing;
+  const double* varyings = nullptr;  // perspective-correct, varyingCount() of them
+};
+
+class FragmentShader {
+ public:
+  virtual ~FragmentShader() = default;
+  // How many varyings of the vertices this shader reads; the rasterizer interpolates only those.
+  virtual int varyingCount() const = 0;
+  virtual glm::dvec4 shade(const FragmentInput& in) const = 0;
+};
+
+// Outputs the first four varyings as RGBA: flat or Gouraud colour, and the conformance tests.
+class ColorVaryingShader final : public FragmentShader {
+ public:
+  int varyingCount() const override { return 4; }
+  glm::dvec4 shade(const FragmentInput& in) const override {
+    return {in.varyings[0], in.varyings[1], in.varyings[2], in.varyings[3]};
+  }
+};
+
+// One colour for every fragment.
+class ConstantColorShader final : public FragmentShader {
+ public:
+  explicit ConstantColorShader(const glm::dvec4& color) : color_(color) {}
+  int varyingCount() const override { return 0; }
+  glm::dvec4 shade(const FragmentInput&) const override { return color_; }
+
+ private:
+  glm::dvec4 color_;
+};
+
+}  // namespace shadowref

@@ -1,0 +1,84 @@
+// The Phong illumination model (000 §2.3), as OpenGL's fixed-function lighting computes it:
+//   colour = emission + ambient_global * ka
+//          + sum over lights: att * spot * (kd * Id * max(N.L, 0) + ks * Is * max(R.V, 0)^n)
+// with the Blinn-Phong variant using max(N.H, 0)^n, H the half vector of L and V. Lighting is
+// evaluated in world space. Two shaders use it: Gouraud (per vertex, colour interpolated) and
+// per-pixel (position and normal interpolated, lighting per fragment).
+#pragma once
+
+#include <limits>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raster/fragment_shader.h"
+
+namespace shadowref {
+
+struct PhongLight {
+  glm::dvec4 position{0.0, 0.0, 1.0, 0.0};  // w = 1 point/spot; w = 0 directional: towards the light
+  glm::dvec3 diffuse{1.0}, specular{1.0};
+  glm::dvec3 spotDirection{0.0, 0.0, -1.0};
+  double spotCosCutoff = -1.0;  // -1: not a spot light (cutoff 180 degrees)
+  double spotExponent = 0.0;
+  glm::dvec3 attenuation{1.0, 0.0, 0.0};  // constant, linear, quadratic
+};
+
+struct PhongMaterial {
+  glm::dvec3 ambient{0.2}, diffuse{0.8}, specular{0.0}, emission{0.0};
+  double shininess = 0.0;
+  bool blinn = false;
+};
+
+// The ambient part: emission + global ambient * ka.
+glm::dvec3 ambientTerm(const PhongMaterial& m, const glm::dvec3& globalAmbient);
+
+// One light's diffuse and specular contribution at world position p with unit normal n, seen
+// from `eye`. Surfaces facing away from the light (N.L <= 0) get nothing, specular included.
+glm::dvec3 lightContribution(const PhongLight& light, const PhongMaterial& m, const glm::dvec3& p,
+                             const glm::dvec3& n, const glm::dvec3& eye);
+
+// What a shader adds up: optionally the ambient term, plus the listed lights.
+struct LightingSetup {
+  PhongMaterial material;
+  glm::dvec3 globalAmbient{0.0};
+  bool includeAmbient = true;
+  std::vector<PhongLight> lights;
+  glm::dvec3 eye{0.0};
+};
+
+glm::dvec3 shadePoint(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n);
+
+// Varying layout shared by the lighting shaders: world position (0..2), world normal (3..5).
+inline constexpr int kVaryingPosition = 0;
+inline constexpr int kVaryingNormal = 3;
+// Gouraud: RGB colour computed per vertex (0..2).
+inline constexpr int kVaryingColor = 0;
+
+// Per-pixel Phong: interpolated position and normal, normal renormalised, lighting per fragment.
+// A fragment of a back-facing polygon is lit with the normal flipped (two-sided lighting), so
+// the inside of a closed room is lit correctly.
+class PerPixelLightingShader : public FragmentShader {
+ public:
+  explicit PerPixelLightingShader(const LightingSetup& setup) : setup_(setup) {}
+  int varyingCount() const override { return 6; }
+  glm::dvec4 shade(const FragmentInput& in) const override;
+
+ protected:
+  glm::dvec3 litColor(const FragmentInput& in) const;
+  const LightingSetup& setup_;
+};
+
+// Gouraud: the colour was computed per vertex (gouraudVertexColor) and is only interpolated.
+class GouraudShader final : public FragmentShader {
+ public:
+  int varyingCount() const override { return 3; }
+  glm::dvec4 shade(const FragmentInput& in) const override {
+    return {in.varyings[kVaryingColor], in.varyings[kVaryingColor + 1], in.varyings[kVaryingColor + 2], 1.0};
+  }
+};
+
+glm::dvec3 gouraudVertexColor(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n);
+
+}  // namespace shadowref

@@ -1,0 +1,61 @@
+// Coverage: walks a set-up triangle over a pixel region and hands every covered pixel centre to
+// a sink, with the three edge-function values there (SPEC.md §1).
+//
+// The region is visited in 8x8 blocks. A block is skipped when one edge is negative at all four
+// of its corner samples (edge functions are linear, so then it is negative everywhere inside),
+// and tested pixel by pixel otherwise. Inside a block the edge functions are stepped with integer
+// additions only, so the coverage decision is exact and the same in every block order.
+#pragma once
+
+#include <algorithm>
+
+#include "raster/render_state.h"
+#include "raster/triangle_setup.h"
+
+namespace shadowref {
+
+inline constexpr int kRasterBlock = 8;
+
+// Sink: void(int x, int y, int64_t e0, int64_t e1, int64_t e2). Pixels are delivered row by row,
+// bottom to top, left to right within a block row. `region` is in pixels, inclusive-exclusive.
+template <class Sink>
+void rasterizeTriangle(const TriangleSetup& t, const Rect& region, Sink&& sink) {
+  const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
+  const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
+  if (x0 > x1 || y0 > y1) return;
+
+  for (int by = y0; by <= y1; by += kRasterBlock) {
+    const int bh = std::min(kRasterBlock, y1 - by + 1);
+    int64_t rowStart[3];
+    for (int i = 0; i < 3; ++i) rowStart[i] = t.edgeAt(i, x0, by) + t.bias[i];
+    for (int bx = x0; bx <= x1; bx += kRasterBlock) {
+      const int bw = std::min(kRasterBlock, x1 - bx + 1);
+      int64_t e[3];
+      bool empty = false, full = true;
+      for (int i = 0; i < 3; ++i) {
+        e[i] = rowStart[i] + t.stepX[i] * (bx - x0);
+        const int64_t dx = t.stepX[i] * (bw - 1), dy = t.stepY[i] * (bh - 1);
+        const int64_t lo = e[i] + std::min<int64_t>(0, dx) + std::min<int64_t>(0, dy);
+        const int64_t hi = e[i] + std::max<int64_t>(0, dx) + std::max<int64_t>(0, dy);
+        if (hi < 0) empty = true;
+        if (lo < 0) full = false;
+      }
+      if (empty) continue;
+      for (int y = by; y < by + bh; ++y) {
+        int64_t a = e[0], b = e[1], c = e[2];
+        for (int x = bx; x < bx + bw; ++x) {
+          if (full || (a >= 0 && b >= 0 && c >= 0))
+            sink(x, y, a - t.bias[0], b - t.bias[1], c - t.bias[2]);
+          a += t.stepX[0];
+          b += t.stepX[1];
+          c += t.stepX[2];
+        }
+        e[0] += t.stepY[0];
+        e[1] += t.stepY[1];
+        e[2] += t.stepY[2];
+      }
+    }
+  }
+}
+
+}  // namespace shadowref

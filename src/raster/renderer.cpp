@@ -1,0 +1,145 @@
+#include "raster/renderer.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "raster/rasterizer.h"
+
+namespace shadowref {
+
+namespace {
+
+bool lexicographicallyLess(const glm::dvec4& a, const glm::dvec4& b) {
+  for (int i = 0; i < 4; ++i) {
+    if (a[i] < b[i]) return true;
+    if (a[i] > b[i]) return false;
+  }
+  return false;
+}
+
+// Rotates (a, b, c) so that the smallest vertex comes first, keeping the winding. The same
+// triangle then goes through clipping and setup with the same arithmetic however its vertices were
+// listed, so a shadow volume's front cap gets bit-for-bit the depths of the scene pass.
+void canonicalRotation(const ClipVertex*& a, const ClipVertex*& b, const ClipVertex*& c) {
+  const ClipVertex* v[3] = {a, b, c};
+  int m = 0;
+  if (lexicographicallyLess(v[1]->position, v[m]->position)) m = 1;
+  if (lexicographicallyLess(v[2]->position, v[m]->position)) m = 2;
+  a = v[m];
+  b = v[(m + 1) % 3];
+  c = v[(m + 2) % 3];
+}
+
+}  // namespace
+
+double guardBandFor(const Viewport& vp) {
+  const double extent = double(std::max({vp.width, vp.height, 1}));
+  return std::max(1.0, double(1 << 20) / extent);
+}
+
+Rect drawRegion(const RenderState& state, const Framebuffer& fb) {
+  int x0 = std::max({0, state.viewport.x});
+  int y0 = std::max({0, state.viewport.y});
+  int x1 = std::min(fb.width(), state.viewport.x + state.viewport.width);
+  int y1 = std::min(fb.height(), state.viewport.y + state.viewport.height);
+  if (state.scissorTest) {
+    x0 = std::max(x0, state.scissor.x);
+    y0 = std::max(y0, state.scissor.y);
+    x1 = std::min(x1, state.scissor.x + state.scissor.width);
+    y1 = std::min(y1, state.scissor.y + state.scissor.height);
+  }
+  return Rect{x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+}
+
+void Renderer::addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
+                        const RenderState& state) {
+  TriangleSetup t;
+  if (!setupTriangle(a, b, c, facing, state, fb_.depthCodec(), t)) return;
+  setups_.push_back(t);
+}
+
+void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c,
+                                const RenderState& state, const ClipPlanes& planes, int varyingCount) {
+  canonicalRotation(a, b, c);
+  const ClipVertex* tri[3] = {a, b, c};
+  bool inside = true;
+  for (const ClipVertex* v : tri) inside = inside && insideAllPlanes(v, 1, planes);
+
+  if (inside) {
+    const WindowVertex wa = toWindow(*a, state.viewport), wb = toWindow(*b, state.viewport),
+                       wc = toWindow(*c, state.viewport);
+    const int64_t area2 = signedArea2(wa, wb, wc);
+    const Facing facing = facingOf(area2, state.frontFace);
+    if (area2 == 0 || isCulled(facing, state.cull)) {
+      ++stats_.trianglesCulled;
+      return;
+    }
+    addSetup(wa, wb, wc, facing, state);
+    return;
+  }
+
+  ++stats_.trianglesClipped;
+  polygon_.assign({*a, *b, *c});
+  clipPolygon(polygon_, planes, varyingCount, clipOut_, clipScratch_);
+  if (clipOut_.size() < 3) return;
+  windowPolygon_.clear();
+  for (const ClipVertex& v : clipOut_) {
+    clippedVertices_.push_back(v);
+    windowPolygon_.push_back(toWindow(clippedVertices_.back(), state.viewport));
+  }
+  // Facing of the polygon as a whole (GL 2.1 §2.14.1: the area of the clipped polygon).
+  int64_t area2 = 0;
+  for (size_t i = 1; i + 1 < windowPolygon_.size(); ++i)
+    area2 += signedArea2(windowPolygon_[0], windowPolygon_[i], windowPolygon_[i + 1]);
+  const Facing facing = facingOf(area2, state.frontFace);
+  if (area2 == 0 || isCulled(facing, state.cull)) {
+    ++stats_.trianglesCulled;
+    return;
+  }
+  for (size_t i = 1; i + 1 < windowPolygon_.size(); ++i)
+    addSetup(windowPolygon_[0], windowPolygon_[i], windowPolygon_[i + 1], facing, state);
+}
+
+void Renderer::draw(const DrawCall& call) {
+  const RenderState& state = *call.state;
+  const bool anyColor = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+  if (call.shader && anyColor) fb_.ensureColor();
+  if (state.depthTest) fb_.ensureDepth();
+  if (state.stencilTest) fb_.ensureStencil();
+
+  ++stats_.drawCalls;
+  watch_.drawIndex = drawCount_++;
+  watch_.drawTag = call.tag;
+
+  ClipPlanes planes;
+  planes.nearPlane = !state.depthClamp;
+  planes.farPlane = state.clipFar && !state.depthClamp;
+  planes.guardBand = guardBandFor(state.viewport);
+  const int varyingCount = call.shader ? call.shader->varyingCount() : 0;
+
+  setups_.clear();
+  clippedVertices_.clear();
+  const size_t triangleCount = call.indices.empty() ? call.vertices.size() / 3 : call.indices.size() / 3;
+  stats_.trianglesIn += triangleCount;
+  for (size_t i = 0; i < triangleCount; ++i) {
+    const ClipVertex* v[3];
+    for (int k = 0; k < 3; ++k) {
+      const size_t index = call.indices.empty() ? 3 * i + k : call.indices[3 * i + k];
+      if (index >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
+      v[k] = &call.vertices[index];
+    }
+    assembleTriangle(v[0], v[1], v[2], state, planes, varyingCount);
+  }
+  stats_.trianglesRasterized += setups_.size();
+
+  const Rect region = drawRegion(state, fb_);
+  if (region.width == 0 || region.height == 0) return;
+  FragmentProcessor fragments(fb_, state, call.shader, stats_, &watch_);
+  for (const TriangleSetup& t : setups_) {
+    rasterizeTriangle(t, region, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
+      fragments.process(t, x, y, e0, e1, e2);
+    });
+  }
+}
+
+}  // namespace shadowref

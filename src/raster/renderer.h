@@ -1,0 +1,74 @@
+// The draw call: primitive assembly -> clipping -> triangle setup -> rasterization -> fragment
+// operations, for triangles given in clip space (SPEC.md §1).
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <span>
+#include <vector>
+
+#include "raster/clipper.h"
+#include "raster/fragment_processor.h"
+#include "raster/fragment_shader.h"
+#include "raster/framebuffer.h"
+#include "raster/raster_stats.h"
+#include "raster/render_state.h"
+#include "raster/triangle_setup.h"
+#include "raster/vertex.h"
+
+namespace shadowref {
+
+struct DrawCall {
+  const RenderState* state = nullptr;
+  std::span<const ClipVertex> vertices;
+  // Three indices per triangle; empty means vertices [3i, 3i+1, 3i+2] form triangle i.
+  std::span<const uint32_t> indices;
+  // nullptr draws no colour at all (stencil/depth-only passes).
+  const FragmentShader* shader = nullptr;
+  uint32_t tag = 0;  // reported in the pixel history
+};
+
+class Renderer {
+ public:
+  explicit Renderer(Framebuffer& framebuffer) : fb_(framebuffer) {}
+
+  // Allocates the buffers the state needs (colour when a shader writes, depth when the depth
+  // test is on, stencil when the stencil test is on), then draws.
+  void draw(const DrawCall& call);
+
+  Framebuffer& framebuffer() { return fb_; }
+  const RasterStats& stats() const { return stats_; }
+  void resetStats() { stats_ = {}; }
+
+  // Reports every fragment at pixel (x, y) to the observer (nullptr to stop).
+  void watchPixel(int x, int y, FragmentObserver* observer) {
+    watch_.x = x;
+    watch_.y = y;
+    watch_.observer = observer;
+  }
+
+ private:
+  void assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c,
+                        const RenderState& state, const ClipPlanes& planes, int varyingCount);
+  void addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
+                const RenderState& state);
+
+  Framebuffer& fb_;
+  RasterStats stats_;
+  PixelWatch watch_;
+  uint64_t drawCount_ = 0;
+  // Per-draw scratch, kept to avoid allocation per call.
+  std::vector<TriangleSetup> setups_;
+  std::deque<ClipVertex> clippedVertices_;  // stable addresses for WindowVertex::source
+  std::vector<ClipVertex> polygon_, clipScratch_, clipOut_;
+  std::vector<WindowVertex> windowPolygon_;
+};
+
+// The rectangle of pixels a draw may touch: viewport, framebuffer and (if on) scissor.
+Rect drawRegion(const RenderState& state, const Framebuffer& fb);
+
+// Guard band G (clipper.h) for a viewport: window coordinates stay within about 2^20 pixels, so
+// fixed-point edge functions fit comfortably in 64 bits.
+double guardBandFor(const Viewport& vp);
+
+}  // namespace shadowref

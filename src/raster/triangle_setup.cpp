@@ -1,0 +1,114 @@
+#include "raster/triangle_setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace shadowref {
+
+namespace {
+
+int64_t snap(double windowCoordinate) {
+  return int64_t(std::floor(windowCoordinate * double(kSubpixelOne) + 0.5));
+}
+
+// Top-left rule in a y-up window: a pixel centre exactly on an edge belongs to the triangle when
+// the edge is a left edge (runs downwards in a counter-clockwise triangle) or a top edge
+// (horizontal, runs right-to-left, interior below).
+bool isTopLeft(int64_t dx, int64_t dy) { return dy < 0 || (dy == 0 && dx < 0); }
+
+// First pixel whose centre is >= the fixed-point coordinate, and last whose centre is <= it.
+int firstPixelAtOrAfter(int64_t fixed) {
+  const int64_t t = fixed - kSubpixelHalf;
+  return int(t >= 0 ? (t + kSubpixelOne - 1) / kSubpixelOne : -((-t) / kSubpixelOne));
+}
+int lastPixelAtOrBefore(int64_t fixed) {
+  const int64_t t = fixed - kSubpixelHalf;
+  return int(t >= 0 ? t / kSubpixelOne : -((-t + kSubpixelOne - 1) / kSubpixelOne));
+}
+
+}  // namespace
+
+WindowVertex toWindow(const ClipVertex& v, const Viewport& vp) {
+  const double invW = 1.0 / v.position.w;
+  const double xn = v.position.x * invW, yn = v.position.y * invW, zn = v.position.z * invW;
+  WindowVertex w;
+  w.x = snap(double(vp.x) + (xn + 1.0) * 0.5 * double(vp.width));
+  w.y = snap(double(vp.y) + (yn + 1.0) * 0.5 * double(vp.height));
+  w.z = vp.nearVal + (zn + 1.0) * 0.5 * (vp.farVal - vp.nearVal);
+  w.invW = invW;
+  w.source = &v;
+  return w;
+}
+
+Facing facingOf(int64_t area2, FrontFace frontFace) {
+  const bool ccw = area2 > 0;
+  return (ccw == (frontFace == FrontFace::CCW)) ? FrontFacing : BackFacing;
+}
+
+bool isCulled(Facing facing, CullMode cull) {
+  switch (cull) {
+    case CullMode::None: return false;
+    case CullMode::Front: return facing == FrontFacing;
+    case CullMode::Back: return facing == BackFacing;
+    case CullMode::FrontAndBack: return true;
+  }
+  return false;
+}
+
+int64_t TriangleSetup::edgeAt(int i, int px, int py) const {
+  const WindowVertex& a = v[(i + 1) % 3];
+  const WindowVertex& b = v[(i + 2) % 3];
+  const int64_t sx = int64_t(px) * kSubpixelOne + kSubpixelHalf;
+  const int64_t sy = int64_t(py) * kSubpixelOne + kSubpixelHalf;
+  return (b.x - a.x) * (sy - a.y) - (b.y - a.y) * (sx - a.x);
+}
+
+bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
+                   const RenderState& state, const DepthCodec& codec, TriangleSetup& t) {
+  int64_t area2 = signedArea2(a, b, c);
+  if (area2 == 0) return false;
+  t.v[0] = a;
+  t.v[1] = b;
+  t.v[2] = c;
+  if (area2 < 0) {
+    std::swap(t.v[1], t.v[2]);
+    area2 = -area2;
+  }
+  t.area2 = area2;
+  t.facing = facing;
+  for (int i = 0; i < 3; ++i) {
+    const WindowVertex& p = t.v[(i + 1) % 3];
+    const WindowVertex& q = t.v[(i + 2) % 3];
+    const int64_t dx = q.x - p.x, dy = q.y - p.y;
+    t.stepX[i] = -dy * kSubpixelOne;
+    t.stepY[i] = dx * kSubpixelOne;
+    t.bias[i] = isTopLeft(dx, dy) ? 0 : -1;
+  }
+  const int64_t x0 = std::min({t.v[0].x, t.v[1].x, t.v[2].x});
+  const int64_t x1 = std::max({t.v[0].x, t.v[1].x, t.v[2].x});
+  const int64_t y0 = std::min({t.v[0].y, t.v[1].y, t.v[2].y});
+  const int64_t y1 = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
+  t.minX = firstPixelAtOrAfter(x0);
+  t.maxX = lastPixelAtOrBefore(x1);
+  t.minY = firstPixelAtOrAfter(y0);
+  t.maxY = lastPixelAtOrBefore(y1);
+  t.depthOffset = state.polygonOffset.enabled ? polygonOffset(t, state.polygonOffset, codec) : 0.0;
+  return true;
+}
+
+double polygonOffset(const TriangleSetup& t, const PolygonOffset& po, const DepthCodec& codec) {
+  // Depth slopes in window units per pixel, from the plane through the three vertices.
+  const double s = 1.0 / double(kSubpixelOne);
+  const double x1 = double(t.v[1].x - t.v[0].x) * s, y1 = double(t.v[1].y - t.v[0].y) * s;
+  const double x2 = double(t.v[2].x - t.v[0].x) * s, y2 = double(t.v[2].y - t.v[0].y) * s;
+  const double z1 = t.v[1].z - t.v[0].z, z2 = t.v[2].z - t.v[0].z;
+  const double det = x1 * y2 - x2 * y1;
+  const double dzdx = (z1 * y2 - z2 * y1) / det;
+  const double dzdy = (x1 * z2 - x2 * z1) / det;
+  const double m = std::max(std::fabs(dzdx), std::fabs(dzdy));
+  const double zMax = std::clamp(std::max({t.v[0].z, t.v[1].z, t.v[2].z}), 0.0, 1.0);
+  return po.factor * m + po.units * codec.resolvableDifference(zMax);
+}
+
+}  // namespace shadowref

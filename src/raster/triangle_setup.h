@@ -1,0 +1,64 @@
+// Triangle setup: viewport transform, snapping to fixed point, facing, and the edge functions the
+// rasterizer walks (SPEC.md §1).
+//
+// Window coordinates are snapped to 1/256 pixel (kSubpixelBits = 8) and every coverage decision
+// is made in exact 64-bit integer arithmetic, so two triangles that share an edge see the same
+// edge function with opposite sign, and the top-left rule gives each pixel centre on it to
+// exactly one of them: watertight, which stencil counting depends on.
+#pragma once
+
+#include <cstdint>
+
+#include "raster/framebuffer.h"
+#include "raster/render_state.h"
+#include "raster/vertex.h"
+
+namespace shadowref {
+
+inline constexpr int kSubpixelBits = 8;
+inline constexpr int64_t kSubpixelOne = int64_t(1) << kSubpixelBits;
+inline constexpr int64_t kSubpixelHalf = kSubpixelOne / 2;
+
+struct WindowVertex {
+  int64_t x = 0, y = 0;  // fixed point, 1/256 pixel
+  double z = 0.0;        // window depth (glDepthRange applied), unclamped
+  double invW = 0.0;     // 1 / w_clip, for perspective-correct varyings
+  const ClipVertex* source = nullptr;
+};
+
+// Clip space -> window space for one vertex (GL 2.1 §2.11.1). Requires w > 0.
+WindowVertex toWindow(const ClipVertex& v, const Viewport& vp);
+
+// Twice the signed area in fixed-point units; > 0 is counter-clockwise (row 0 at the bottom).
+inline int64_t signedArea2(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+Facing facingOf(int64_t signedArea2, FrontFace frontFace);
+bool isCulled(Facing facing, CullMode cull);
+
+// Edge i runs from vertex (i+1)%3 to (i+2)%3, opposite vertex i. Its function at a sample point
+// p is E_i(p) = dx * (p.y - y_j) - dy * (p.x - x_j); positive inside a counter-clockwise
+// triangle, and E_0 + E_1 + E_2 = area2 everywhere, so lambda_i = E_i / area2.
+struct TriangleSetup {
+  WindowVertex v[3];       // counter-clockwise
+  int64_t area2 = 0;       // > 0
+  Facing facing = FrontFacing;
+  int64_t stepX[3]{}, stepY[3]{};  // change of E_i for one pixel right / up
+  int64_t bias[3]{};       // 0 for top-left edges, -1 otherwise: E_i + bias_i >= 0 covers
+  int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixels whose centres may be covered
+  double depthOffset = 0.0;
+
+  // E_i at the centre of pixel (px, py).
+  int64_t edgeAt(int i, int px, int py) const;
+};
+
+// Builds the setup of a window-space triangle with the given facing. Returns false when the
+// snapped triangle has no area. Vertex order is made counter-clockwise here.
+bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
+                   const RenderState& state, const DepthCodec& codec, TriangleSetup& out);
+
+// GL 1.1 polygon offset: factor * max(|dz/dx|, |dz/dy|) + units * r.
+double polygonOffset(const TriangleSetup& t, const PolygonOffset& po, const DepthCodec& codec);
+
+}  // namespace shadowref
