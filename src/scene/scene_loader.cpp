@@ -1,0 +1,166 @@
+#include "scene/scene_loader.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scene/scene_generator.h"
+#include "scene/scene_meshes.h"
+#include "scene/scene_nodes.h"
+#include "scene/scene_overrides.h"
+#include "scene/scene_sections.h"
+#include "scene/scene_validation.h"
+#include "scene/yaml_document.h"
+
+namespace shadowref {
+
+namespace {
+
+const std::vector<std::string_view> kTopLevelKeys{"image",  "camera",    "ambient", "background", "lights",
+                                                  "materials", "meshes", "nodes",   "generator",  "shadow"};
+
+// Light names and material names are how a file or a -D reaches what a generator made.
+void checkName(const std::string& name, const SourceLocation& at, const std::string& path) {
+  if (name.find('.') != std::string::npos)
+    failAt(at, path + ": the name '" + name + "' must not contain '.' (it separates names in -D keys)");
+}
+
+// lights: a list. A light whose name matches one the generator made changes that light's keys;
+// any other is a new light (named "light<index>" when it has no name).
+void readLights(const YamlValue& list, Scene& scene, Provenance& where) {
+  if (list.isNull()) return;
+  if (!list.isList()) failAt(list.at, "lights: expected a list of lights, got " + std::string(list.kindName()));
+  for (const YamlValue& item : list.items) {
+    if (!item.isMap()) failAt(item.at, "lights: each light is a map of keys (type, position, ...), got " +
+                                           std::string(item.kindName()));
+    Light* light = nullptr;
+    if (const YamlValue* name = item.find("name")) {
+      std::string text = readText(*name, "lights.name");
+      checkName(text, name->at, "lights");
+      for (Light& l : scene.lights)
+        if (l.name == text) light = &l;
+    }
+    if (!light) {
+      scene.lights.emplace_back();
+      light = &scene.lights.back();
+      light->name = "light" + std::to_string(scene.lights.size() - 1);
+    }
+    applyLight(item, *light, "lights." + std::to_string(light - scene.lights.data()), where);
+  }
+}
+
+// materials: a map name -> keys. `default` is the material of nodes that name none.
+void readMaterials(const YamlValue& map, Scene& scene, Provenance& where) {
+  if (map.isNull()) return;
+  if (!map.isMap()) failAt(map.at, "materials: expected a map of name: {ambient, diffuse, ...}, got " +
+                                       std::string(map.kindName()));
+  for (const YamlEntry& e : map.entries) {
+    checkName(e.key, e.keyAt, "materials");
+    Material* material = nullptr;
+    for (Material& m : scene.materials)
+      if (m.name == e.key) material = &m;
+    if (!material) {
+      scene.materials.push_back(Material{});
+      material = &scene.materials.back();
+      material->name = e.key;
+    }
+    applyMaterial(e.value, *material, "materials." + e.key, where);
+  }
+}
+
+// meshes: a map name -> source. A name the generator used replaces that mesh everywhere.
+void readMeshes(const YamlValue& map, Scene& scene, const std::string& baseDir, Provenance& where) {
+  if (map.isNull()) return;
+  if (!map.isMap()) failAt(map.at, "meshes: expected a map of name: source, got " + std::string(map.kindName()));
+  for (const YamlEntry& e : map.entries) {
+    std::shared_ptr<Mesh> mesh = readMeshSource(e.value, e.key, "meshes." + e.key, baseDir, where);
+    bool replaced = false;
+    for (auto& m : scene.meshes)
+      if (m->name == e.key) m = mesh, replaced = true;
+    if (!replaced) scene.meshes.push_back(std::move(mesh));
+  }
+}
+
+void readNodes(const YamlValue& list, Scene& scene, Provenance& where) {
+  if (list.isNull()) return;
+  if (!list.isList()) failAt(list.at, "nodes: expected a list of nodes, got " + std::string(list.kindName()));
+  const size_t first = scene.roots.size();
+  for (size_t i = 0; i < list.items.size(); ++i)
+    scene.roots.push_back(readNode(list.items[i], "nodes." + std::to_string(first + i), scene, where));
+}
+
+// Overrides of generator.* are merged into the file's generator section before it runs.
+void mergeInto(YamlValue& base, const YamlValue& overlay) {
+  if (!base.isMap() || !overlay.isMap()) {
+    base = overlay;
+    return;
+  }
+  for (const YamlEntry& o : overlay.entries) {
+    YamlEntry* existing = nullptr;
+    for (YamlEntry& b : base.entries)
+      if (b.key == o.key) existing = &b;
+    if (existing) mergeInto(existing->value, o.value);
+    else base.entries.push_back(o);
+  }
+}
+
+Scene buildScene(const YamlValue& root, const std::string& displayName, const std::string& baseDir,
+                 const LoadOptions& options) {
+  Provenance where{SourceLocation{displayName, 0, 0}};
+  if (!root.isMap())
+    failAt(root.at, "a scene file is a map of sections (" + joinNames(kTopLevelKeys) + "), got " + root.kindName());
+  checkKeys(root, "", kTopLevelKeys);
+  const std::vector<Override> overrides = parseOverrides(options.overrides);
+  auto section = [&](std::string_view key) {
+    const YamlValue* v = root.find(key);
+    return v ? *v : YamlValue{};
+  };
+
+  Scene scene;
+  scene.sourceFile = displayName;
+  // The generator runs first; the file's sections then change or add to what it made.
+  YamlValue generator = section("generator");
+  for (const Override& o : overrides) {
+    if (o.path[0].text != "generator") continue;
+    if (generator.isScalar()) generator = generatorShorthand(generator);
+    mergeInto(generator, o.asTree(1));
+  }
+  if (!generator.isNull() || root.find("generator")) runGenerator(generator, scene, baseDir, where);
+
+  if (const YamlValue* v = root.find("image")) applyImage(*v, scene, where);
+  if (const YamlValue* v = root.find("camera")) applyCamera(*v, scene.camera, where);
+  if (const YamlValue* v = root.find("ambient")) scene.ambient = readColor(*v, "ambient"), where.record("ambient", v->at);
+  if (const YamlValue* v = root.find("background"))
+    scene.background = readColor(*v, "background"), where.record("background", v->at);
+  if (const YamlValue* v = root.find("shadow")) applyShadow(*v, scene.shadow, where);
+  readMaterials(section("materials"), scene, where);
+  readLights(section("lights"), scene, where);
+  readMeshes(section("meshes"), scene, baseDir, where);
+  readNodes(section("nodes"), scene, where);
+
+  for (const Override& o : overrides)
+    if (o.path[0].text != "generator") applyOverride(o, scene, where);
+  validateScene(scene, where);
+  return scene;
+}
+
+}  // namespace
+
+Scene loadSceneFromString(const std::string& yaml, const std::string& displayName, const LoadOptions& options) {
+  return buildScene(parseYaml(yaml, displayName), displayName, ".", options);
+}
+
+Scene loadScene(const std::string& path, const LoadOptions& options) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw SceneError(SourceLocation{path, 0, 0}, "scene file does not exist");
+  if (!fs::is_regular_file(path, ec)) throw SceneError(SourceLocation{path, 0, 0}, "not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(SourceLocation{path, 0, 0}, "cannot read the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  fs::path parent = fs::path(path).parent_path();
+  return buildScene(parseYaml(text.str(), path), path, parent.empty() ? "." : parent.string(), options);
+}
+
+}  // namespace shadowref

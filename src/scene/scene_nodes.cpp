@@ -1,0 +1,192 @@
+#include "scene/scene_nodes.h"
+
+#include <optional>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace shadowref {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double radians(double degrees) { return degrees * (kPi / 180.0); }
+
+// A node as written, before its transform is composed (the keys may come in any order).
+struct NodeDraft {
+  const Scene* scene = nullptr;
+  Node node;
+  std::optional<glm::dvec3> translate, scale;
+  std::optional<glm::dmat4> rotate, matrix;
+  SourceLocation scaleAt, matrixAt;
+  bool nameGiven = false;
+};
+
+int findByName(const std::vector<std::string_view>& names, const YamlValue& v, const std::string& path,
+               const char* what) {
+  std::string name = readText(v, path);
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);
+  std::string message = path + ": no " + std::string(what) + " named '" + name + "'";
+  std::string_view near = closestName(name, names);
+  if (!near.empty()) message += "; did you mean '" + std::string(near) + "'?";
+  else if (names.empty()) message += " (the scene defines none)";
+  failAt(v.at, message);
+}
+
+int findMesh(const Scene& scene, const YamlValue& v, const std::string& path) {
+  std::vector<std::string_view> names;
+  for (const auto& m : scene.meshes) names.push_back(m->name);
+  return findByName(names, v, path, "mesh");
+}
+
+int findMaterial(const Scene& scene, const YamlValue& v, const std::string& path) {
+  std::vector<std::string_view> names;
+  for (const Material& m : scene.materials) names.push_back(m.name);
+  return findByName(names, v, path, "material");
+}
+
+// rotate: {axis: [x, y, z], angle: degrees} or {euler: [x, y, z]} in degrees, applied about the
+// fixed X axis first, then Y, then Z: R = Rz · Ry · Rx.
+struct RotateDraft {
+  std::optional<glm::dvec3> axis, euler;
+  std::optional<double> angle;
+};
+
+glm::dmat4 readRotate(const YamlValue& v, const std::string& path) {
+  static const std::vector<Field<RotateDraft>> fields{
+      {"axis", [](const YamlValue& x, RotateDraft& r, const std::string& p, Provenance&) {
+         r.axis = readVec3(x, p);
+         if (*r.axis == glm::dvec3(0.0)) failAt(x.at, p + ": the rotation axis must not be the zero vector");
+       }},
+      {"angle", [](const YamlValue& x, RotateDraft& r, const std::string& p, Provenance&) { r.angle = readNumber(x, p); }},
+      {"euler", [](const YamlValue& x, RotateDraft& r, const std::string& p, Provenance&) { r.euler = readVec3(x, p); }},
+  };
+  if (!v.isMap()) failAt(v.at, path + ": expected {axis: [x, y, z], angle: degrees} or {euler: [x, y, z]}");
+  RotateDraft r;
+  Provenance ignored{v.at};
+  applyFields(v, path, fields, r, ignored);
+  if (r.euler && (r.axis || r.angle))
+    failAt(v.at, path + ": give either euler or axis and angle, not both");
+  if (r.euler) {
+    const glm::dvec3 e = *r.euler;
+    const glm::dmat4 id(1.0);
+    return glm::rotate(id, radians(e.z), glm::dvec3(0, 0, 1)) * glm::rotate(id, radians(e.y), glm::dvec3(0, 1, 0)) *
+           glm::rotate(id, radians(e.x), glm::dvec3(1, 0, 0));
+  }
+  if (!r.axis || !r.angle) failAt(v.at, path + ": a rotation about an axis needs both axis and angle");
+  return glm::rotate(glm::dmat4(1.0), radians(*r.angle), glm::normalize(*r.axis));
+}
+
+glm::dvec3 readScale(const YamlValue& v, const std::string& path) {
+  glm::dvec3 s = v.isScalar() ? glm::dvec3(readNumber(v, path)) : readVec3(v, path);
+  if (s.x == 0.0 || s.y == 0.0 || s.z == 0.0)
+    failAt(v.at, path + ": a scale of 0 flattens the node: the transform is singular");
+  return s;
+}
+
+// matrix: 16 numbers written row by row, as on paper (the translation is the 4th, 8th and 12th
+// number), either flat or as 4 rows of 4. The last row must be 0 0 0 1: nodes are affine.
+glm::dmat4 readMatrix(const YamlValue& v, const std::string& path) {
+  std::vector<const YamlValue*> numbers;
+  if (v.isList() && v.items.size() == 4 && v.items[0].isList()) {
+    for (const YamlValue& row : v.items) {
+      if (!row.isList() || row.items.size() != 4) failAt(row.at, path + ": each of the 4 rows needs 4 numbers");
+      for (const YamlValue& x : row.items) numbers.push_back(&x);
+    }
+  } else if (v.isList() && v.items.size() == 16) {
+    for (const YamlValue& x : v.items) numbers.push_back(&x);
+  } else {
+    failAt(v.at, path + ": expected 16 numbers, row by row (flat or as 4 rows of 4)");
+  }
+  glm::dmat4 m(0.0);
+  for (int i = 0; i < 16; ++i) m[i % 4][i / 4] = readNumber(*numbers[i], path + "." + std::to_string(i));  // glm: m[column][row]
+  if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+    failAt(v.at, path + ": the last row must be 0 0 0 1 (an affine transform)");
+  // Singular when the determinant is negligible against the largest it could be for these column
+  // lengths (Hadamard's bound), so the test does not depend on the scene's units.
+  const glm::dmat3 linear(m);
+  const double bound = glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2]);
+  if (!(std::abs(glm::determinant(linear)) > 1e-12 * bound))
+    failAt(v.at, path + ": the matrix is singular (its upper 3x3 part has determinant 0)");
+  return m;
+}
+
+const std::vector<Field<NodeDraft>>& nodeFields() {
+  static const std::vector<Field<NodeDraft>> fields{
+      {"name", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
+         d.node.name = readText(v, p);
+         if (d.node.name.find_first_of("/.") != std::string::npos)
+           failAt(v.at, p + ": a node name must not contain '/' or '.' (they separate names in paths)");
+         d.nameGiven = true;
+       }},
+      {"mesh", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
+         d.node.mesh = findMesh(*d.scene, v, p);
+       }},
+      {"material", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
+         d.node.material = findMaterial(*d.scene, v, p);
+       }},
+      {"translate", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) { d.translate = readVec3(v, p); }},
+      {"rotate", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) { d.rotate = readRotate(v, p); }},
+      {"scale", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
+         d.scale = readScale(v, p);
+         d.scaleAt = v.at;
+       }},
+      {"matrix", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
+         d.matrix = readMatrix(v, p);
+         d.matrixAt = v.at;
+       }},
+      {"cast_shadows", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
+         d.node.castShadows = readBool(v, p);
+       }},
+      {"shadow_proxy", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
+         d.node.shadowProxy = findMesh(*d.scene, v, p);
+       }},
+      {"children", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance& where) {
+         if (v.isNull()) return;
+         if (!v.isList()) failAt(v.at, p + ": expected a list of nodes, got " + v.kindName());
+         for (size_t i = 0; i < v.items.size(); ++i)
+           d.node.children.push_back(readNode(v.items[i], p + "." + std::to_string(i), *d.scene, where));
+       }},
+  };
+  return fields;
+}
+
+glm::dmat4 compose(const NodeDraft& d, const std::string& path) {
+  if (d.matrix) {
+    if (d.translate || d.rotate || d.scale)
+      failAt(d.matrixAt, path + ".matrix: give either matrix or translate/rotate/scale, not both");
+    return *d.matrix;
+  }
+  glm::dmat4 m(1.0);
+  if (d.translate) m = glm::translate(m, *d.translate);
+  if (d.rotate) m = m * *d.rotate;
+  if (d.scale) m = glm::scale(m, *d.scale);
+  return m;
+}
+
+}  // namespace
+
+Node readNode(const YamlValue& map, const std::string& path, const Scene& scene, Provenance& where) {
+  if (!map.isMap()) failAt(map.at, path + ": expected a node (a map with name, mesh, translate, ...), got " + map.kindName());
+  NodeDraft d;
+  d.scene = &scene;
+  applyFields(map, path, nodeFields(), d, where);
+  if (!d.nameGiven) d.node.name = d.node.mesh >= 0 ? scene.meshes[d.node.mesh]->name : "node";
+  d.node.local = compose(d, path);
+  return std::move(d.node);
+}
+
+glm::dmat4 readTransform(const YamlValue& map, const std::string& path) {
+  static const Scene empty;
+  Provenance ignored{map.at};
+  NodeDraft d;
+  d.scene = &empty;
+  std::vector<Field<NodeDraft>> transformOnly;
+  for (const Field<NodeDraft>& f : nodeFields())
+    if (f.key == "translate" || f.key == "rotate" || f.key == "scale" || f.key == "matrix") transformOnly.push_back(f);
+  applyFields(map, path, transformOnly, d, ignored);
+  return compose(d, path);
+}
+
+}  // namespace shadowref

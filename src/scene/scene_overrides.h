@@ -1,0 +1,42 @@
+// -D key=value overrides (SPEC.md §5): a dotted path into the scene and a YAML value, applied
+// after the file to the finished scene — `lights.0` is the scene's first light whether the file
+// or a generator made it. `generator.*` is the exception: it changes the generator's options
+// before the generator runs.
+//
+// Locations: an error in the i-th override (counted from 1) is reported as
+// "<command line>:i:column", the column counted in its "key=value" text.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "scene/yaml_fields.h"
+
+namespace shadowref {
+
+struct Override {
+  struct Segment {
+    std::string text;
+    SourceLocation at;
+  };
+  std::vector<Segment> path;  // "lights.0.range" -> lights, 0, range
+  YamlValue value;
+
+  // The override as a small document: {path[from]: {path[from+1]: ... value}}, keys located on
+  // the command line, so the section readers check it exactly as they check the file.
+  YamlValue asTree(size_t from) const;
+};
+
+// Splits and parses every "key=value"; throws SceneError for a missing '=', an empty path
+// segment, or a value that is not YAML.
+std::vector<Override> parseOverrides(const std::vector<std::string>& texts);
+
+// Applies one override (not generator.*) to the scene. Throws SceneError for an unknown path,
+// a missing light or material, or a value of the wrong type.
+void applyOverride(const Override& o, Scene& scene, Provenance& where);
+
+// The top-level names an override may start with.
+const std::vector<std::string_view>& overridableSections();
+
+}  // namespace shadowref

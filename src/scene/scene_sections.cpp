@@ -1,0 +1,211 @@
+#include "scene/scene_sections.h"
+
+namespace shadowref {
+
+const EnumNames<LightType>& lightTypeNames() {
+  static const EnumNames<LightType> names{
+      {"point", LightType::Point}, {"directional", LightType::Directional}, {"spot", LightType::Spot}};
+  return names;
+}
+
+const EnumNames<SoftShape>& softShapeNames() {
+  static const EnumNames<SoftShape> names{{"none", SoftShape::None},         {"square_x", SoftShape::SquareX},
+                                          {"square_y", SoftShape::SquareY},  {"square_z", SoftShape::SquareZ},
+                                          {"sphere14", SoftShape::Sphere14}, {"area16", SoftShape::AreaEdge16}};
+  return names;
+}
+
+const EnumNames<ShadingModel>& shadingNames() {
+  static const EnumNames<ShadingModel> names{{"gouraud", ShadingModel::Gouraud},
+                                             {"per_pixel", ShadingModel::PerPixel}};
+  return names;
+}
+
+const EnumNames<ShadowMethod>& shadowMethodNames() {
+  static const EnumNames<ShadowMethod> names{
+      {"none", ShadowMethod::None},   {"zpass", ShadowMethod::ZPass},         {"zfail", ShadowMethod::ZFail},
+      {"auto", ShadowMethod::Auto},   {"shadowmap", ShadowMethod::ShadowMap}, {"tsm", ShadowMethod::Trapezoidal}};
+  return names;
+}
+
+const EnumNames<SilhouetteAlgorithm>& silhouetteNames() {
+  static const EnumNames<SilhouetteAlgorithm> names{{"kuhn", SilhouetteAlgorithm::Kuhn},
+                                                    {"yen_kwoon", SilhouetteAlgorithm::YenKwoon},
+                                                    {"kilgard", SilhouetteAlgorithm::Kilgard},
+                                                    {"lengyel", SilhouetteAlgorithm::Lengyel}};
+  return names;
+}
+
+const EnumNames<DepthFormat>& depthFormatNames() {
+  static const EnumNames<DepthFormat> names{{"float32", DepthFormat::Float32}, {"unorm24", DepthFormat::Unorm24}};
+  return names;
+}
+
+namespace {
+
+// A positive distance, or the word `infinite` (camera.far, a light's range).
+double readDistanceOrInfinite(const YamlValue& v, const std::string& path) {
+  if (v.isScalar() && v.scalar == "infinite") return kInfinity;
+  if (v.isScalar() && (v.scalar == ".inf" || v.scalar == ".Inf" || v.scalar == ".INF"))
+    failAt(v.at, path + ": write 'infinite' for an unbounded distance, not '" + v.scalar + "'");
+  return readPositive(v, path);
+}
+
+const std::vector<Field<Scene>>& imageFields() {
+  static const std::vector<Field<Scene>> fields{
+      {"width", [](const YamlValue& v, Scene& s, const std::string& p, Provenance&) {
+         s.width = readInt(v, p, 0, kMaxImageSide * 16);  // the real limits are checked with both sides known
+       }},
+      {"height", [](const YamlValue& v, Scene& s, const std::string& p, Provenance&) {
+         s.height = readInt(v, p, 0, kMaxImageSide * 16);
+       }},
+      {"depth", [](const YamlValue& v, Scene& s, const std::string& p, Provenance&) {
+         s.depthFormat = readEnum(v, p, depthFormatNames());
+       }},
+  };
+  return fields;
+}
+
+const std::vector<Field<Camera>>& cameraFields() {
+  static const std::vector<Field<Camera>> fields{
+      {"eye", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) { c.eye = readVec3(v, p); }},
+      {"target", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) { c.target = readVec3(v, p); }},
+      {"up", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) { c.up = readVec3(v, p); }},
+      {"fov", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) {
+         c.fovYDegrees = readNumber(v, p);
+         if (!(c.fovYDegrees > 0.0 && c.fovYDegrees < 180.0))
+           failAt(v.at, p + ": the vertical field of view must lie between 0 and 180 degrees, got " + v.scalar);
+       }},
+      {"near", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) {
+         c.nearPlane = readNumber(v, p);
+         if (!(c.nearPlane > 0.0))
+           failAt(v.at, p + ": the near plane distance must be greater than 0, got " + v.scalar);
+       }},
+      {"far", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) {
+         c.farPlane = readDistanceOrInfinite(v, p);
+       }},
+  };
+  return fields;
+}
+
+const std::vector<Field<Light>>& softFields() {
+  static const std::vector<Field<Light>> fields{
+      {"shape", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         l.soft = readEnum(v, p, softShapeNames());
+       }},
+      {"spacing", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         l.softSpacing = readPositive(v, p);
+       }},
+  };
+  return fields;
+}
+
+const std::vector<Field<Light>>& lightFields() {
+  static const std::vector<Field<Light>> fields{
+      {"name", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) { l.name = readText(v, p); }},
+      {"type", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         l.type = readEnum(v, p, lightTypeNames());
+       }},
+      {"position", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) { l.position = readVec3(v, p); }},
+      {"direction", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         l.direction = readVec3(v, p);
+         if (l.direction == glm::dvec3(0.0)) failAt(v.at, p + ": a direction must not be the zero vector");
+       }},
+      {"color", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) { l.color = readColor(v, p); }},
+      {"range", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         l.range = readDistanceOrInfinite(v, p);
+       }},
+      {"spot_cutoff", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         l.spotCutoffDegrees = readNumberInRange(v, p, 0.0, 90.0);  // GL_SPOT_CUTOFF's range for a spot light
+       }},
+      {"spot_exponent", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         l.spotExponent = readNumberInRange(v, p, 0.0, 128.0);  // GL_SPOT_EXPONENT's range
+       }},
+      {"attenuation", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         glm::dvec3 a = readVec3(v, p);
+         if (a.x < 0.0 || a.y < 0.0 || a.z < 0.0 || a == glm::dvec3(0.0))
+           failAt(v.at, p + ": [constant, linear, quadratic] must be >= 0 and not all 0");
+         l.attenuation = a;
+       }},
+      {"soft", [](const YamlValue& v, Light& l, const std::string& p, Provenance& where) {
+         applyFields(v, p, softFields(), l, where);
+       }},
+  };
+  return fields;
+}
+
+const std::vector<Field<Material>>& materialFields() {
+  static const std::vector<Field<Material>> fields{
+      {"ambient", [](const YamlValue& v, Material& m, const std::string& p, Provenance&) { m.ambient = readColor(v, p); }},
+      {"diffuse", [](const YamlValue& v, Material& m, const std::string& p, Provenance&) { m.diffuse = readColor(v, p); }},
+      {"specular", [](const YamlValue& v, Material& m, const std::string& p, Provenance&) {
+         m.specular = readColor(v, p);
+       }},
+      {"shininess", [](const YamlValue& v, Material& m, const std::string& p, Provenance&) {
+         m.shininess = readNumberInRange(v, p, 0.0, 128.0);  // GL_SHININESS's range
+       }},
+      {"shading", [](const YamlValue& v, Material& m, const std::string& p, Provenance&) {
+         m.shading = readEnum(v, p, shadingNames());
+       }},
+      {"blinn", [](const YamlValue& v, Material& m, const std::string& p, Provenance&) { m.blinn = readBool(v, p); }},
+  };
+  return fields;
+}
+
+const std::vector<Field<ShadowSettings>>& shadowFields() {
+  using S = ShadowSettings;
+  static const std::vector<Field<S>> fields{
+      {"method", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.method = readEnum(v, p, shadowMethodNames());
+       }},
+      {"silhouette", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.silhouette = readEnum(v, p, silhouetteNames());
+       }},
+      {"two_sided", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.twoSidedStencil = readBool(v, p); }},
+      {"wrap", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.wrapOps = readBool(v, p); }},
+      {"darken_composite", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.darkenComposite = readBool(v, p);
+       }},
+      {"map_size", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.mapSize = readInt(v, p, 8, 8192); }},
+      {"offset_factor", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.offsetFactor = readNumber(v, p);
+       }},
+      {"offset_units", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.offsetUnits = readNumber(v, p);
+       }},
+      {"bias", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.constantBias = readNumber(v, p); }},
+      {"back_faces_only", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.backFacesOnly = readBool(v, p);
+       }},
+      {"pcf", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.pcf = readInt(v, p, 1, 15); }},
+      {"compare_fail", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.compareFail = readNumberInRange(v, p, 0.0, 1.0);
+       }},
+      {"focus_region", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.focusRegion = readNumber(v, p);
+         if (!(s.focusRegion > 0.0 && s.focusRegion < 1.0))  // a fraction of the view depth (002 §4.1)
+           failAt(v.at, p + ": the focus region is a fraction of the view depth, between 0 and 1 exclusive");
+       }},
+  };
+  return fields;
+}
+
+}  // namespace
+
+void applyImage(const YamlValue& map, Scene& scene, Provenance& where) {
+  applyFields(map, "image", imageFields(), scene, where);
+}
+void applyCamera(const YamlValue& map, Camera& camera, Provenance& where) {
+  applyFields(map, "camera", cameraFields(), camera, where);
+}
+void applyLight(const YamlValue& map, Light& light, const std::string& path, Provenance& where) {
+  applyFields(map, path, lightFields(), light, where);
+}
+void applyMaterial(const YamlValue& map, Material& material, const std::string& path, Provenance& where) {
+  applyFields(map, path, materialFields(), material, where);
+}
+void applyShadow(const YamlValue& map, ShadowSettings& shadow, Provenance& where) {
+  applyFields(map, "shadow", shadowFields(), shadow, where);
+}
+
+}  // namespace shadowref
