@@ -13,6 +13,6 @@ namespace shadowref {
 YamlValue generatorShorthand(const YamlValue& scalar);
 
 // Runs the generator that `section` names with its options on `scene`.
-void runGenerator(const YamlValue& section, Scene& scene, const std::string& baseDir, Provenance& where);
+void runGenerator(const YamlValue& section, Scene& scene, Provenance& where);
 
 }  // namespace shadowref

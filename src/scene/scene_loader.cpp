@@ -125,7 +125,7 @@ Scene buildScene(const YamlValue& root, const std::string& displayName, const st
     if (generator.isScalar()) generator = generatorShorthand(generator);
     mergeInto(generator, o.asTree(1));
   }
-  if (!generator.isNull() || root.find("generator")) runGenerator(generator, scene, baseDir, where);
+  if (!generator.isNull() || root.find("generator")) runGenerator(generator, scene, where);
 
   if (const YamlValue* v = root.find("image")) applyImage(*v, scene, where);
   if (const YamlValue* v = root.find("camera")) applyCamera(*v, scene.camera, where);

@@ -1,0 +1,149 @@
+#include "scene/scene_info.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "scene/scene_sections.h"
+
+namespace shadowref {
+
+namespace {
+
+std::string num(double x) {
+  if (x == kInfinity) return "infinite";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+std::string vec(const glm::dvec3& v) {
+  std::string s = "(";
+  s += num(v.x);
+  s += ", ";
+  s += num(v.y);
+  s += ", ";
+  s += num(v.z);
+  s += ")";
+  return s;
+}
+
+std::string box(const Aabb& b) { return b.empty() ? std::string("empty") : vec(b.min) + " .. " + vec(b.max); }
+
+Aabb transformed(const Aabb& b, const glm::dmat4& m) {
+  Aabb out;
+  if (b.empty()) return out;
+  for (int i = 0; i < 8; ++i) {
+    const glm::dvec3 c((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+    out.add(glm::dvec3(m * glm::dvec4(c, 1.0)));
+  }
+  return out;
+}
+
+const char* topologyName(Topology t) {
+  switch (t) {
+    case Topology::Closed: return "closed";
+    case Topology::Open: return "open";
+    case Topology::NonManifold: return "non-manifold";
+  }
+  return "?";
+}
+
+std::string meshName(const Scene& scene, int index) {
+  return index >= 0 && index < static_cast<int>(scene.meshes.size()) ? scene.meshes[index]->name : "?";
+}
+
+void describeNode(std::ostringstream& out, const Scene& scene, const Node& node, const glm::dmat4& parent,
+                  int depth, Aabb& sceneBounds) {
+  const glm::dmat4 world = parent * node.local;
+  out << std::string(2 + 2 * depth, ' ') << node.name;
+  if (node.mesh >= 0 && node.mesh < static_cast<int>(scene.meshes.size())) {
+    const Aabb bounds = transformed(scene.meshes[node.mesh]->bounds, world);
+    if (!bounds.empty()) sceneBounds.add(bounds.min), sceneBounds.add(bounds.max);
+    out << "  mesh " << meshName(scene, node.mesh);
+    if (node.material >= 0 && node.material < static_cast<int>(scene.materials.size()))
+      out << ", material " << scene.materials[node.material].name;
+    if (!node.castShadows) out << ", casts no shadow";
+    else if (node.shadowProxy >= 0) out << ", shadow proxy " << meshName(scene, node.shadowProxy);
+    out << ", world bounds " << box(bounds);
+  }
+  out << "\n";
+  for (const Node& child : node.children) describeNode(out, scene, child, world, depth + 1, sceneBounds);
+}
+
+void describeLight(std::ostringstream& out, const Light& l) {
+  out << "  " << l.name << ": " << enumName(lightTypeNames(), l.type);
+  if (l.type != LightType::Directional) out << " at " << vec(l.position);
+  if (l.type != LightType::Point) out << " direction " << vec(l.direction);
+  out << ", color " << vec(l.color) << ", range " << num(l.range);
+  if (l.type == LightType::Spot) out << ", cutoff " << num(l.spotCutoffDegrees) << " deg, exponent " << num(l.spotExponent);
+  if (l.attenuation != glm::dvec3(1.0, 0.0, 0.0)) out << ", attenuation " << vec(l.attenuation);
+  if (l.soft != SoftShape::None) out << ", soft " << enumName(softShapeNames(), l.soft) << " spacing " << num(l.softSpacing);
+  out << "\n";
+}
+
+void describeShadow(std::ostringstream& out, const ShadowSettings& s) {
+  out << "shadow: " << enumName(shadowMethodNames(), s.method);
+  switch (s.method) {
+    case ShadowMethod::ZPass:
+    case ShadowMethod::ZFail:
+    case ShadowMethod::Auto:
+      out << ", silhouette " << enumName(silhouetteNames(), s.silhouette) << ", "
+          << (s.twoSidedStencil ? "two-sided stencil" : "two culled passes") << ", "
+          << (s.wrapOps ? "wrapping" : "saturating") << " stencil ops"
+          << (s.darkenComposite ? ", darken compositing" : "");
+      break;
+    case ShadowMethod::ShadowMap:
+    case ShadowMethod::Trapezoidal:
+      out << ", map " << s.mapSize << " x " << s.mapSize << ", offset " << num(s.offsetFactor) << " / "
+          << num(s.offsetUnits) << ", bias " << num(s.constantBias) << (s.backFacesOnly ? ", back faces only" : "")
+          << ", pcf " << s.pcf << ", compare fail " << num(s.compareFail);
+      if (s.method == ShadowMethod::Trapezoidal) out << ", focus region " << num(s.focusRegion);
+      break;
+    case ShadowMethod::None: break;
+  }
+  out << "\n";
+}
+
+}  // namespace
+
+std::string describeScene(const Scene& scene) {
+  std::ostringstream out;
+  out << "scene: " << scene.sourceFile << "\n";
+  out << "image: " << scene.width << " x " << scene.height << ", depth " << enumName(depthFormatNames(), scene.depthFormat)
+      << "\n";
+  const Camera& c = scene.camera;
+  out << "camera: eye " << vec(c.eye) << ", target " << vec(c.target) << ", up " << vec(c.up) << ", fov "
+      << num(c.fovYDegrees) << " deg, near " << num(c.nearPlane) << ", far " << num(c.farPlane) << "\n";
+  out << "ambient " << vec(scene.ambient) << ", background " << vec(scene.background) << "\n";
+  describeShadow(out, scene.shadow);
+
+  out << "lights (" << scene.lights.size() << "):\n";
+  for (const Light& l : scene.lights) describeLight(out, l);
+
+  out << "materials (" << scene.materials.size() << "):\n";
+  for (const Material& m : scene.materials)
+    out << "  " << m.name << ": ambient " << vec(m.ambient) << ", diffuse " << vec(m.diffuse) << ", specular "
+        << vec(m.specular) << ", shininess " << num(m.shininess) << ", " << enumName(shadingNames(), m.shading)
+        << (m.blinn ? ", blinn" : "") << "\n";
+
+  size_t triangles = 0;
+  out << "meshes (" << scene.meshes.size() << "):\n";
+  for (const auto& m : scene.meshes) {
+    triangles += m->triangles.size();
+    out << "  " << m->name << ": " << m->triangles.size() << " triangles, " << m->weldedPositions.size()
+        << " welded vertices, " << m->edges.size() << " edges, " << topologyName(m->topology) << " (" << m->openEdges
+        << " open, " << m->nonManifoldEdges << " non-manifold edges), bounds " << box(m->bounds) << "\n";
+  }
+
+  out << "nodes:\n";
+  Aabb sceneBounds;
+  for (const Node& root : scene.roots) describeNode(out, scene, root, glm::dmat4(1.0), 0, sceneBounds);
+
+  size_t instances = 0, instanceTriangles = 0;
+  for (const Instance& inst : scene.instances()) ++instances, instanceTriangles += inst.mesh->triangles.size();
+  out << "total: " << instances << " instances, " << instanceTriangles << " triangles drawn (" << triangles
+      << " in distinct meshes), world bounds " << box(sceneBounds) << "\n";
+  return out.str();
+}
+
+}  // namespace shadowref
