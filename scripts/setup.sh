@@ -24,7 +24,8 @@ fi
 
 build_dir=${1:-build}
 shift || true
-if [ ! -f "$build_dir/build.ninja" ]; then
-  cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+if [ ! -f "$build_dir/build.ninja" ] || [ $# -gt 0 ]; then
+  cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null 2>"$build_dir.cmake.log" \
+    || { cat "$build_dir.cmake.log" >&2; exit 1; }
 fi
 cmake --build "$build_dir"

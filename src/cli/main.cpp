@@ -1,2 +1,36 @@
-// Placeholder until the command line lands.
-int main() { return 0; }
+// shadowref: a deterministic reference rasterizer for the classic shadow algorithms.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "cli/cli_common.h"
+#include "cli/compare_command.h"
+#include "cli/render_command.h"
+#include "cli/scene_commands.h"
+
+int main(int argc, char** argv) {
+  using namespace shadowref::cli;
+  CLI::App app{"shadowref: a deterministic software rasterizer with colour, depth, stencil and accumulation\n"
+               "buffers, on which stencil shadow volumes and shadow maps run exactly as their sources describe."};
+  app.require_subcommand(1);
+  RenderArgs render;
+  SceneArgs check, info;
+  CompareArgs compare;
+  addRenderCommand(app, render);
+  // PENDING addCheckCommand(app, check);
+  // PENDING addInfoCommand(app, info);
+  addCompareCommand(app, compare);
+  app.footer("Exit status: 0 success, 1 a failed render or comparison, 2 bad usage or bad input.");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kBadInput;
+  }
+  if (app.got_subcommand("render")) return runRender(render);
+  if (app.got_subcommand("compare")) return runCompare(compare);
+  return kBadInput;
+}

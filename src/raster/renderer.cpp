@@ -32,6 +32,14 @@ void canonicalRotation(const ClipVertex*& a, const ClipVertex*& b, const ClipVer
 
 }  // namespace
 
+Renderer::Renderer(Framebuffer& framebuffer, int threads) : fb_(framebuffer) { setThreads(threads); }
+
+void Renderer::setThreads(int threads) {
+  if (threads <= 0) threads = defaultThreadCount();
+  if (threads == 1) pool_.reset();
+  else if (!pool_ || pool_->threadCount() != threads) pool_ = std::make_unique<ThreadPool>(threads);
+}
+
 double guardBandFor(const Viewport& vp) {
   const double extent = double(std::max({vp.width, vp.height, 1}));
   return std::max(1.0, double(1 << 20) / extent);
@@ -133,13 +141,52 @@ void Renderer::draw(const DrawCall& call) {
   stats_.trianglesRasterized += setups_.size();
 
   const Rect region = drawRegion(state, fb_);
-  if (region.width == 0 || region.height == 0) return;
-  FragmentProcessor fragments(fb_, state, call.shader, stats_, &watch_);
-  for (const TriangleSetup& t : setups_) {
-    rasterizeTriangle(t, region, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
-      fragments.process(t, x, y, e0, e1, e2);
-    });
+  if (region.width == 0 || region.height == 0 || setups_.empty()) return;
+  rasterizeAll(call, region);
+}
+
+namespace {
+constexpr int kBandRows = 16;
+// Below this many candidate pixels a draw is not worth waking the other threads for.
+constexpr int64_t kParallelThreshold = 8192;
+
+int64_t candidatePixels(const std::vector<TriangleSetup>& setups, const Rect& r) {
+  int64_t sum = 0;
+  for (const TriangleSetup& t : setups) {
+    const int64_t w = std::min(t.maxX, r.x + r.width - 1) - std::max(t.minX, r.x) + 1;
+    const int64_t h = std::min(t.maxY, r.y + r.height - 1) - std::max(t.minY, r.y) + 1;
+    if (w > 0 && h > 0) sum += w * h;
   }
+  return sum;
+}
+}  // namespace
+
+void Renderer::rasterizeAll(const DrawCall& call, const Rect& region) {
+  const RenderState& state = *call.state;
+  const int bands = (region.height + kBandRows - 1) / kBandRows;
+  if (!pool_ || bands < 2 || candidatePixels(setups_, region) < kParallelThreshold) {
+    FragmentProcessor fragments(fb_, state, call.shader, stats_, &watch_);
+    for (const TriangleSetup& t : setups_)
+      rasterizeTriangle(t, region, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
+        fragments.process(t, x, y, e0, e1, e2);
+      });
+    return;
+  }
+  // Each band of rows belongs to one task, which replays every triangle in submission order.
+  bandStats_.assign(size_t(bands), RasterStats{});
+  pool_->run(bands, [&](int b) {
+    Rect band = region;
+    band.y = region.y + b * kBandRows;
+    band.height = std::min(kBandRows, region.y + region.height - band.y);
+    FragmentProcessor fragments(fb_, state, call.shader, bandStats_[size_t(b)], &watch_);
+    for (const TriangleSetup& t : setups_) {
+      if (t.maxY < band.y || t.minY >= band.y + band.height) continue;
+      rasterizeTriangle(t, band, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
+        fragments.process(t, x, y, e0, e1, e2);
+      });
+    }
+  });
+  for (const RasterStats& s : bandStats_) stats_ += s;
 }
 
 }  // namespace shadowref

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "raster/framebuffer.h"
 #include "raster/raster_stats.h"
 #include "raster/render_state.h"
+#include "raster/thread_pool.h"
 #include "raster/triangle_setup.h"
 #include "raster/vertex.h"
 
@@ -30,7 +32,12 @@ struct DrawCall {
 
 class Renderer {
  public:
-  explicit Renderer(Framebuffer& framebuffer) : fb_(framebuffer) {}
+  explicit Renderer(Framebuffer& framebuffer, int threads = 1);
+
+  // Rasterizes bands of rows on `threads` threads (0: all cores). The buffers come out
+  // byte-identical for every thread count.
+  void setThreads(int threads);
+  int threads() const { return pool_ ? pool_->threadCount() : 1; }
 
   // Allocates the buffers the state needs (colour when a shader writes, depth when the depth
   // test is on, stencil when the stencil test is on), then draws.
@@ -53,7 +60,11 @@ class Renderer {
   void addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
                 const RenderState& state);
 
+  void rasterizeAll(const DrawCall& call, const Rect& region);
+
   Framebuffer& fb_;
+  std::unique_ptr<ThreadPool> pool_;
+  std::vector<RasterStats> bandStats_;
   RasterStats stats_;
   PixelWatch watch_;
   uint64_t drawCount_ = 0;

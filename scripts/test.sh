@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and runs the whole test suite through ctest.
+#   scripts/test.sh              Release build in build/
+#   scripts/test.sh --sanitize   AddressSanitizer + UndefinedBehaviorSanitizer build in build-asan/
+# Under CI (CI=true) warnings are errors.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build_dir=build
+args=()
+if [ "${1:-}" = "--sanitize" ]; then
+  build_dir=build-asan
+  args+=(-DSHADOWREF_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo)
+fi
+if [ "${CI:-}" = "true" ]; then args+=(-DSHADOWREF_WERROR=ON); fi
+
+bash scripts/setup.sh "$build_dir" "${args[@]}"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)"

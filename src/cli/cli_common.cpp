@@ -1,0 +1,39 @@
+#include "cli/cli_common.h"
+
+#include <filesystem>
+#include <iostream>
+
+#include "scene/scene_error.h"
+#include "scene/scene_loader.h"
+
+namespace shadowref::cli {
+
+std::optional<Scene> loadSceneOrReport(const SceneArgs& args) {
+  try {
+    LoadOptions options;
+    options.overrides = args.overrides;
+    if (args.scene.empty()) {
+      // The built-in default is the room of 000 Abb. 5.1, as a one-line scene, so that -D
+      // overrides work on it exactly as on a file.
+      return loadSceneFromString("generator: {type: room}\n", "<builtin:room>", options);
+    }
+    return loadScene(args.scene, options);
+  } catch (const SceneError& e) {
+    std::cerr << e.what() << '\n';
+  } catch (const std::exception& e) {
+    std::cerr << (args.scene.empty() ? "<builtin:room>" : args.scene) << ": " << e.what() << '\n';
+  }
+  return std::nullopt;
+}
+
+std::string defaultOutputPath(const std::string& scenePath, const std::string& extension) {
+  const std::string stem = scenePath.empty() ? "default" : std::filesystem::path(scenePath).stem().string();
+  return "out/" + stem + extension;
+}
+
+void ensureParentDirectory(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
+}  // namespace shadowref::cli

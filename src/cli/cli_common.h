@@ -1,0 +1,30 @@
+// What every subcommand shares: exit codes, loading a scene with clear errors, output paths.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace shadowref::cli {
+
+// SPEC.md §5: 0 success, 1 a failed render or comparison, 2 bad usage or bad input.
+enum ExitCode : int { kSuccess = 0, kFailed = 1, kBadInput = 2 };
+
+struct SceneArgs {
+  std::string scene;                   // empty: the built-in default scene (the room)
+  std::vector<std::string> overrides;  // -D key=value
+};
+
+// Loads the scene (or builds the default one) and applies overrides. A SceneError is printed as
+// "file:line:col: message" on stderr and returns nullopt.
+std::optional<Scene> loadSceneOrReport(const SceneArgs& args);
+
+// "out/room.png" for "scenes/room.yaml", "out/default.png" for the built-in scene.
+std::string defaultOutputPath(const std::string& scenePath, const std::string& extension);
+
+// Creates the parent folders of `path`.
+void ensureParentDirectory(const std::string& path);
+
+}  // namespace shadowref::cli

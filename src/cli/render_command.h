@@ -1,0 +1,29 @@
+// `shadowref render [SCENE] [-o OUT]...`: renders a scene to PNG and/or EXR, with the teaching dumps.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/cli_common.h"
+
+namespace CLI {
+class App;
+}
+
+namespace shadowref::cli {
+
+struct RenderArgs {
+  SceneArgs scene;
+  std::vector<std::string> outputs;  // .png / .exr
+  std::string method;                // overrides shadow.method
+  int threads = 0;                   // 0: all cores
+  bool quiet = false;
+  bool stats = false;
+  std::vector<std::string> dumps;    // passes
+  std::string pixelHistory;          // "x,y"
+};
+
+void addRenderCommand(CLI::App& app, RenderArgs& args);
+int runRender(const RenderArgs& args);
+
+}  // namespace shadowref::cli

@@ -1,0 +1,67 @@
+#include "shadow/frame_renderer.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "raster/clear.h"
+#include "raster/renderer.h"
+#include "shadow/scene_passes.h"
+#include "shadow/scene_view.h"
+#include "shadow/shadow_method.h"
+
+namespace shadowref {
+
+namespace {
+
+class PassClock {
+ public:
+  explicit PassClock(FrameResult& result) : result_(result) {}
+  template <class Fn>
+  void run(const std::string& pass, Fn&& fn) {
+    const auto start = std::chrono::steady_clock::now();
+    fn();
+    const auto end = std::chrono::steady_clock::now();
+    result_.timings.push_back({pass, std::chrono::duration<double, std::milli>(end - start).count()});
+  }
+
+ private:
+  FrameResult& result_;
+};
+
+// No shadows: every light in one pass, with the ambient term.
+void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResult& result, Renderer& renderer) {
+  const SceneView view = makeCameraView(scene);
+  const std::vector<Instance> instances = scene.instances();
+  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view);
+  RenderState state;
+  state.viewport = view.viewport;
+  state.clipFar = !view.infinite;
+  state.depthTest = true;
+  state.depthFunc = CompareFunc::Less;
+  state.cull = CullMode::Back;
+  PassClock clock(result);
+  clock.run("clear", [&] {
+    clearColor(renderer.framebuffer(), state, glm::vec4(glm::vec3(scene.background), 1.0f));
+    clearDepth(renderer.framebuffer(), state, 1.0);
+  });
+  clock.run("lit", [&] { drawLit(renderer, state, scene, view, prepared, scene.lights, true); });
+  if (options.onPass) options.onPass("01-lit", renderer.framebuffer());
+}
+
+}  // namespace
+
+FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
+  const ShadowMethod method = options.method.value_or(scene.shadow.method);
+  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}};
+  Renderer renderer(result.framebuffer);
+  if (options.observer) renderer.watchPixel(options.watchX, options.watchY, options.observer);
+  switch (method) {
+    case ShadowMethod::None: renderUnshadowed(scene, options, result, renderer); break;
+    default:
+      throw std::runtime_error(std::string("shadow method '") + name(method) + "' is not available in this build");
+  }
+  result.stats = renderer.stats();
+  return result;
+}
+
+}  // namespace shadowref

@@ -1,0 +1,146 @@
+#include "shadow/scene_passes.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace shadowref {
+
+std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view) {
+  std::vector<PreparedInstance> out;
+  out.reserve(instances.size());
+  for (size_t i = 0; i < instances.size(); ++i) {
+    const Instance& inst = instances[i];
+    PreparedInstance p;
+    p.instance = &inst;
+    p.index = int(i);
+    p.transform.modelView = view.view * inst.world;
+    p.transform.projection = view.projection;
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(inst.world)));
+    const Mesh& mesh = *inst.mesh;
+    p.vertices.resize(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      const glm::dvec4 object(mesh.positions[v], 1.0);
+      ClipVertex& cv = p.vertices[v];
+      cv.position = p.transform.toClip(object);
+      const glm::dvec3 world = glm::dvec3(inst.world * object);
+      const glm::dvec3 normal = glm::normalize(normalMatrix * mesh.normals[v]);
+      for (int k = 0; k < 3; ++k) {
+        cv.varyings[kVaryingPosition + k] = world[k];
+        cv.varyings[kVaryingNormal + k] = normal[k];
+      }
+    }
+    p.indices.reserve(mesh.triangles.size() * 3);
+    for (const glm::uvec3& t : mesh.triangles) {
+      p.indices.push_back(t.x);
+      p.indices.push_back(t.y);
+      p.indices.push_back(t.z);
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+PhongLight toPhongLight(const Light& light) {
+  PhongLight p;
+  p.position = light.homogeneous();
+  p.diffuse = light.color;
+  p.specular = light.color;
+  p.attenuation = light.attenuation;
+  if (light.type == LightType::Spot) {
+    p.spotDirection = light.direction;
+    p.spotCosCutoff = std::cos(light.spotCutoffDegrees * std::numbers::pi / 180.0);
+    p.spotExponent = light.spotExponent;
+  }
+  if (light.type == LightType::Directional) p.attenuation = glm::dvec3(1.0, 0.0, 0.0);
+  return p;
+}
+
+PhongMaterial toPhongMaterial(const Material& m) {
+  PhongMaterial p;
+  p.ambient = m.ambient;
+  p.diffuse = m.diffuse;
+  p.specular = m.specular;
+  p.shininess = m.shininess;
+  p.blinn = m.blinn;
+  return p;
+}
+
+bool withinRange(const Light& light, const Aabb& b) {
+  if (std::isinf(light.range) || light.type == LightType::Directional) return true;
+  const double r2 = light.range * light.range;
+  auto inRange = [&](const glm::dvec3& p) {
+    const glm::dvec3 d = p - light.position;
+    return glm::dot(d, d) <= r2;
+  };
+  if (inRange(b.center())) return true;
+  for (int i = 0; i < 8; ++i) {
+    const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+    if (inRange(corner)) return true;
+  }
+  return false;
+}
+
+namespace {
+
+void drawInstance(Renderer& renderer, const RenderState& state, const PreparedInstance& p, const LightingSetup& lighting,
+                  const Material& material) {
+  DrawCall call;
+  call.state = &state;
+  call.indices = p.indices;
+  call.tag = uint32_t(p.index);
+  if (material.shading == ShadingModel::PerPixel) {
+    const PerPixelLightingShader shader(lighting);
+    call.vertices = p.vertices;
+    call.shader = &shader;
+    renderer.draw(call);
+    return;
+  }
+  // Gouraud: light each vertex, interpolate the colour.
+  std::vector<ClipVertex> lit(p.vertices);
+  for (ClipVertex& v : lit) {
+    const glm::dvec3 pos(v.varyings[kVaryingPosition], v.varyings[kVaryingPosition + 1], v.varyings[kVaryingPosition + 2]);
+    const glm::dvec3 n(v.varyings[kVaryingNormal], v.varyings[kVaryingNormal + 1], v.varyings[kVaryingNormal + 2]);
+    const glm::dvec3 c = gouraudVertexColor(lighting, pos, n);
+    for (int k = 0; k < 3; ++k) v.varyings[kVaryingColor + k] = c[k];
+  }
+  const GouraudShader shader;
+  call.vertices = lit;
+  call.shader = &shader;
+  renderer.draw(call);
+}
+
+}  // namespace
+
+void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+             std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient) {
+  for (const PreparedInstance& p : prepared) {
+    const Material& material = scene.materials.at(size_t(p.instance->material));
+    LightingSetup lighting;
+    lighting.material = toPhongMaterial(material);
+    lighting.globalAmbient = scene.ambient;
+    lighting.includeAmbient = includeAmbient;
+    lighting.eye = view.eye;
+    for (const Light& light : lights)
+      if (withinRange(light, p.instance->worldBounds)) lighting.lights.push_back(toPhongLight(light));
+    if (!includeAmbient && lighting.lights.empty()) continue;
+    drawInstance(renderer, state, p, lighting, material);
+  }
+}
+
+void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+                 std::span<const PreparedInstance> prepared) {
+  drawLit(renderer, state, scene, view, prepared, {}, true);
+}
+
+void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared) {
+  for (const PreparedInstance& p : prepared) {
+    DrawCall call;
+    call.state = &state;
+    call.vertices = p.vertices;
+    call.indices = p.indices;
+    call.tag = uint32_t(p.index);
+    renderer.draw(call);
+  }
+}
+
+}  // namespace shadowref

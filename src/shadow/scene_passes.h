@@ -1,0 +1,48 @@
+// Drawing a scene's instances through the raster pipeline: the building blocks every shadow
+// method's passes are made of (ambient pass, lit pass, depth-only pass).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "raster/lighting.h"
+#include "raster/renderer.h"
+#include "raster/vertex.h"
+#include "raster/vertex_stage.h"
+#include "scene/scene.h"
+#include "shadow/scene_view.h"
+
+namespace shadowref {
+
+// An instance transformed for one view, once per frame: clip positions plus world position and
+// world normal as varyings (lighting.h layout), reused by every pass that draws it.
+struct PreparedInstance {
+  const Instance* instance = nullptr;
+  int index = 0;                 // position in the scene's instance list (pixel-history tag)
+  VertexTransform transform;     // object -> clip; shadow volumes of this instance must use it too
+  std::vector<ClipVertex> vertices;
+  std::vector<uint32_t> indices;
+};
+
+std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view);
+
+PhongLight toPhongLight(const Light& light);
+PhongMaterial toPhongMaterial(const Material& material);
+
+// 000 §4.3.1: an object is lit by (and casts a shadow for) a light only when a corner or the
+// centre of its bounding box lies within the light's range.
+bool withinRange(const Light& light, const Aabb& worldBounds);
+
+// Draws every instance with lighting from `lights` (only those in range of each instance), the
+// ambient term included when `includeAmbient`. Per-pixel or Gouraud, as each material says.
+void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+             std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient);
+
+// Ambient light only (step 1 of 000 §3.1): fills the depth buffer.
+void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+                 std::span<const PreparedInstance> prepared);
+
+// Depth (and stencil) only, no colour.
+void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared);
+
+}  // namespace shadowref
