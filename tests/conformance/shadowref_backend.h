@@ -1,0 +1,10 @@
+// Renders a conformance scenario with shadowref's raster pipeline in its 24-bit depth mode.
+#pragma once
+
+#include "conformance/scenario.h"
+
+namespace shadowref::conformance {
+
+Readback renderWithShadowref(const Scenario& scenario);
+
+}  // namespace shadowref::conformance
