@@ -16,8 +16,8 @@ int main(int argc, char** argv) {
   SceneArgs check, info;
   CompareArgs compare;
   addRenderCommand(app, render);
-  // PENDING addCheckCommand(app, check);
-  // PENDING addInfoCommand(app, info);
+  addCheckCommand(app, check);
+  addInfoCommand(app, info);
   addCompareCommand(app, compare);
   app.footer("Exit status: 0 success, 1 a failed render or comparison, 2 bad usage or bad input.");
   try {
@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
     return kBadInput;
   }
   if (app.got_subcommand("render")) return runRender(render);
+  if (app.got_subcommand("check")) return runCheck(check);
+  if (app.got_subcommand("info")) return runInfo(info);
   if (app.got_subcommand("compare")) return runCompare(compare);
   return kBadInput;
 }
