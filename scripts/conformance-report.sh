@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Runs the OSMesa conformance tests with softpipe and llvmpipe and regenerates the agreement
+# table in docs/conformance.md (between the conformance-table markers).
+#   scripts/conformance-report.sh [BUILD_DIR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir=${1:-build}
+cmake --build "$build_dir" --target conformance_tests >/dev/null
+binary="$build_dir/tests/conformance_tests"
+rows=$(mktemp)
+trap 'rm -f "$rows"' EXIT
+for driver in softpipe llvmpipe; do
+  # The run's own pass/fail is CI's business; the table shows every case either way.
+  GALLIUM_DRIVER=$driver SHADOWREF_CONFORMANCE_REPORT="$rows" "$binary" >/dev/null || true
+done
+table=$(mktemp)
+trap 'rm -f "$rows" "$table"' EXIT
+{
+  echo "| case | driver | pixels | edge pixels | stencil equal | stencil diff on / off edge | max depth diff / allowed (24-bit units) | max colour diff / allowed (1/255) | issue expectation | note |"
+  echo "|---|---|---|---|---|---|---|---|---|---|"
+  sort -s -t'|' -k2,2 "$rows"
+} >"$table"
+doc=docs/conformance.md
+awk -v table="$table" '
+  /<!-- conformance-table:begin -->/ { print; while ((getline line < table) > 0) print line; skipping = 1; next }
+  /<!-- conformance-table:end -->/ { skipping = 0 }
+  !skipping { print }
+' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+echo "conformance-report: $(wc -l <"$rows") rows written to $doc"
