@@ -5,8 +5,6 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "image/image_writer.h"
-
 namespace shadowref {
 
 int ChannelImage::channelIndex(const std::string& name) const {
@@ -60,11 +58,11 @@ ChannelImage readChannelImage(const std::string& path) {
   return image;
 }
 
-ChannelImage channelImageOf(const Framebuffer& fb) {
+ChannelImage channelImageOf(const Framebuffer& fb, const ExrExtras& extras) {
   ChannelImage image;
   image.width = fb.width();
   image.height = fb.height();
-  for (const NamedChannel& channel : exrChannels(fb)) {
+  for (const NamedChannel& channel : exrChannels(fb, extras)) {
     std::vector<double> values(size_t(fb.width()) * size_t(fb.height()));
     for (int y = 0; y < fb.height(); ++y)
       for (int x = 0; x < fb.width(); ++x) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "image/image_writer.h"
 #include "raster/framebuffer.h"
 
 namespace shadowref {
@@ -27,8 +28,8 @@ struct ChannelImage {
 //   half / float / double                   -> the value.
 ChannelImage readChannelImage(const std::string& path);
 
-// The channels writeExr would write for fb (exrChannels), flipped to file order: comparing this
-// with a read EXR compares exactly what a round trip would keep.
-ChannelImage channelImageOf(const Framebuffer& fb);
+// The channels writeExr would write for fb and extras (exrChannels), flipped to file order:
+// comparing this with a read EXR compares exactly what a round trip would keep.
+ChannelImage channelImageOf(const Framebuffer& fb, const ExrExtras& extras = {});
 
 }  // namespace shadowref

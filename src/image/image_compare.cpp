@@ -123,7 +123,12 @@ CompareResult compareImages(const std::string& pathA, const std::string& pathB, 
 
 CompareResult compareWithExr(const Framebuffer& fb, const std::string& goldenExr, const Tolerances& tol,
                              size_t maxReported) {
-  CompareResult r = compareChannelImages(channelImageOf(fb), readChannelImage(goldenExr), tol, maxReported);
+  return compareWithExr(fb, ExrExtras{}, goldenExr, tol, maxReported);
+}
+
+CompareResult compareWithExr(const Framebuffer& fb, const ExrExtras& extras, const std::string& goldenExr,
+                             const Tolerances& tol, size_t maxReported) {
+  CompareResult r = compareChannelImages(channelImageOf(fb, extras), readChannelImage(goldenExr), tol, maxReported);
   r.nameA = "framebuffer";
   r.nameB = goldenExr;
   return r;
@@ -144,12 +149,12 @@ std::string formatReport(const CompareResult& r) {
                   pixels, pixels ? 100.0 * double(r.failedPixels) / double(pixels) : 0.0);
     out += line;
   }
-  std::snprintf(line, sizeof line, "  %-12s %-12s %-14s %-12s %-14s %s\n", "channel", "tolerance", "max |A-B|",
+  std::snprintf(line, sizeof line, "  %-12s %-15s %-15s %-12s %-15s %s\n", "channel", "tolerance", "max |A-B|",
                 "at (x, y)", "mean |A-B|", "failing");
   out += line;
   for (const ChannelStats& s : r.channels) {
     std::string at = s.maxX < 0 ? "-" : "(" + std::to_string(s.maxX) + ", " + std::to_string(s.maxY) + ")";
-    std::snprintf(line, sizeof line, "  %-12s %-12s %-14s %-12s %-14s %zu\n", s.name.c_str(), number(s.tolerance).c_str(),
+    std::snprintf(line, sizeof line, "  %-12s %-15s %-15s %-12s %-15s %zu\n", s.name.c_str(), number(s.tolerance).c_str(),
                   number(s.maxAbsDiff).c_str(), at.c_str(), number(s.meanAbsDiff).c_str(), s.failCount);
     out += line;
   }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "image/channel_image.h"
+#include "image/image_writer.h"
 #include "raster/framebuffer.h"
 
 namespace shadowref {
@@ -65,6 +66,9 @@ CompareResult compareImages(const std::string& pathA, const std::string& pathB, 
 // Compares what writeExr would write for fb (A) with a golden EXR (B). Defaults: stencil and Z
 // exact, colour within 1/255.
 CompareResult compareWithExr(const Framebuffer& fb, const std::string& goldenExr,
+                             const Tolerances& tol = Tolerances::golden(), size_t maxReported = 10);
+// The same for a golden written with extra channels (per-light stencil "stencil.L0", ...).
+CompareResult compareWithExr(const Framebuffer& fb, const ExrExtras& extras, const std::string& goldenExr,
                              const Tolerances& tol = Tolerances::golden(), size_t maxReported = 10);
 
 // A human-readable report: verdict, per-channel statistics, the first failing pixels with both

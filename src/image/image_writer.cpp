@@ -156,6 +156,9 @@ void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& e
     if (c.name == "Z") spec.z_channel = k;
   }
   spec.attribute("compression", "zip");
+  // An empty DateTime keeps OpenImageIO from stamping the current time into the header, so the same
+  // framebuffer always gives the same bytes (goldens diff cleanly).
+  spec.attribute("DateTime", "");
 
   // Every channel is 4 bytes wide, so a pixel is nc words; floats travel as their bit patterns.
   std::vector<uint32_t> words(size_t(w) * size_t(h) * size_t(nc));

@@ -65,7 +65,8 @@ struct ExrExtras {
 std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& extras = {});
 
 // Writes exrChannels(fb, extras) as a ZIP-compressed (lossless) scanline OpenEXR file with
-// per-channel formats. A framebuffer with no buffers and no extras is an error.
+// per-channel formats and no time stamp: the same framebuffer gives the same bytes.
+// A framebuffer with no buffers and no extras is an error.
 void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras = {});
 
 // Chooses by extension, case-insensitive: ".png" -> writePng, ".exr" -> writeExr. Any other

@@ -215,3 +215,21 @@ TEST_CASE("a framebuffer matches its own EXR golden and a changed pixel is found
     CHECK(r.structuralError == "channel sets differ: only in A: (none); only in B: stencil");
   }
 }
+
+TEST_CASE("a golden with per-light stencil channels is compared with the same extras", "[image]") {
+  TempDir dir("compare-golden-extras");
+  Framebuffer fb = makeFramebuffer();
+  ExrExtras extras;
+  extras.channels.push_back(NamedChannel::stencilChannel("stencil.L0", std::vector<uint8_t>(12, 1)));
+  extras.channels.push_back(NamedChannel::stencilChannel("stencil.L1", std::vector<uint8_t>(12, 2)));
+  writeExr(fb, dir.file("golden.exr"), extras);
+  CHECK(compareWithExr(fb, extras, dir.file("golden.exr")).passed);
+  CHECK(compareWithExr(fb, dir.file("golden.exr")).structuralError ==
+        "channel sets differ: only in A: (none); only in B: stencil.L0, stencil.L1");
+  extras.channels[1].uints[11] = 3;  // framebuffer (3, 2): the top-right pixel, file row 0
+  CompareResult r = compareWithExr(fb, extras, dir.file("golden.exr"));
+  REQUIRE(r.firstFailures.size() == 1);
+  CHECK(r.firstFailures[0].x == 3);
+  CHECK(r.firstFailures[0].y == 0);
+  CHECK(r.firstFailures[0].failingChannels == std::vector<std::string>{"stencil.L1"});
+}

@@ -102,6 +102,15 @@ TEST_CASE("EXR values are exact and framebuffer row 0 is the last scanline of th
   CHECK(alpha == std::vector<float>{1.f, 0.875f, 0.75f, 1.f, 0.875f, 0.75f});
 }
 
+TEST_CASE("EXR carries no time stamp, so the same framebuffer gives the same bytes", "[image]") {
+  TempDir dir("exr-no-date");
+  writeExr(makeFilledFramebuffer(), dir.file("a.exr"));
+  CHECK(readSpec(dir.file("a.exr")).spec.find_attribute("DateTime") == nullptr);
+  writeExr(makeFilledFramebuffer(), dir.file("b.exr"));
+  std::ifstream a(dir.file("a.exr"), std::ios::binary), b(dir.file("b.exr"), std::ios::binary);
+  CHECK(std::string(std::istreambuf_iterator<char>(a), {}) == std::string(std::istreambuf_iterator<char>(b), {}));
+}
+
 TEST_CASE("EXR Z of a 24-bit depth buffer is the decoded window depth code / (2^24 - 1)", "[image]") {
   TempDir dir("exr-unorm24");
   const std::string path = dir.file("fb.exr");
