@@ -1,0 +1,265 @@
+// Coverage: which pixel centres a triangle owns. Pixel centres are at half-integers; a centre
+// exactly on an edge belongs to the triangle when the edge is a left or a top edge (top-left rule,
+// y up), so triangles sharing an edge cover each centre on it exactly once (watertight).
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "raster/renderer.h"
+#include "support/polygon_geometry.h"
+#include "support/raster_harness.h"
+
+using namespace shadowref;
+using namespace shadowref::testing;
+
+namespace {
+
+std::string coverageOf(Framebuffer& fb, const std::vector<ClipVertex>& triangles) {
+  const RenderState s = coverageCountingState(fb);
+  Renderer r(fb);
+  draw(r, s, triangles);
+  return stencilPicture(fb);
+}
+
+std::vector<ClipVertex> reversed(std::vector<ClipVertex> triangles) {
+  for (size_t i = 0; i + 2 < triangles.size(); i += 3) std::swap(triangles[i + 1], triangles[i + 2]);
+  return triangles;
+}
+
+}  // namespace
+
+TEST_CASE("a rectangle with corners on pixel centres covers the centres on its left and top edges",
+          "[raster][coverage]") {
+  // [1.5, 5.5] x [1.5, 4.5]: columns 1..4 (x = 5.5 is the right edge), rows 2..4 (y = 1.5 is the
+  // bottom edge, y = 4.5 the top edge); the diagonal is shared and covered once.
+  const std::string expected = rows({"........",
+                                     "........",
+                                     "........",
+                                     ".1111...",
+                                     ".1111...",
+                                     ".1111...",
+                                     "........",
+                                     "........"});
+  {
+    Framebuffer fb(8, 8);
+    CHECK(coverageOf(fb, windowRect(fullViewportState(fb).viewport, 1.5, 1.5, 5.5, 4.5)) == expected);
+  }
+  {  // the other diagonal
+    Framebuffer fb(8, 8);
+    const Viewport vp = fullViewportState(fb).viewport;
+    CHECK(coverageOf(fb, windowTriangles(vp, {{1.5, 1.5, 0.5}, {5.5, 1.5, 0.5}, {1.5, 4.5, 0.5},
+                                              {5.5, 1.5, 0.5}, {5.5, 4.5, 0.5}, {1.5, 4.5, 0.5}})) == expected);
+  }
+  {  // clockwise triangles cover the same centres
+    Framebuffer fb(8, 8);
+    CHECK(coverageOf(fb, reversed(windowRect(fullViewportState(fb).viewport, 1.5, 1.5, 5.5, 4.5))) == expected);
+  }
+}
+
+TEST_CASE("two rectangles sharing an edge through pixel centres cover it once", "[raster][coverage]") {
+  Framebuffer fb(8, 8);
+  const Viewport vp = fullViewportState(fb).viewport;
+  std::vector<ClipVertex> v = windowRect(vp, 1.5, 1.5, 5.5, 4.5);
+  const std::vector<ClipVertex> right = windowRect(vp, 5.5, 1.5, 7.5, 4.5);
+  v.insert(v.end(), right.begin(), right.end());
+  CHECK(coverageOf(fb, v) == rows({"........",
+                                   "........",
+                                   "........",
+                                   ".111111.",
+                                   ".111111.",
+                                   ".111111.",
+                                   "........",
+                                   "........"}));
+}
+
+TEST_CASE("top-left rule: a right triangle with edges through pixel centres", "[raster][coverage]") {
+  // (0.5, 0.5) (6.5, 0.5) (0.5, 6.5): left edge x = 0.5 in, bottom edge y = 0.5 out, hypotenuse
+  // x + y = 7 (a right edge) out. Centres (x + .5, y + .5) with y >= 1 and x + y < 6.
+  const std::string lower = rows({"........",
+                                  "........",
+                                  "1.......",
+                                  "11......",
+                                  "111.....",
+                                  "1111....",
+                                  "11111...",
+                                  "........"});
+  Framebuffer a(8, 8), b(8, 8);
+  const Viewport vp = fullViewportState(a).viewport;
+  const std::vector<ClipVertex> t = windowTriangles(vp, {{0.5, 0.5, 0.5}, {6.5, 0.5, 0.5}, {0.5, 6.5, 0.5}});
+  CHECK(coverageOf(a, t) == lower);
+  CHECK(coverageOf(b, reversed(t)) == lower);
+  // Its complement (6.5, 0.5) (6.5, 6.5) (0.5, 6.5) owns the hypotenuse (a left edge for it) and the
+  // top edge y = 6.5, not the right edge x = 6.5: together they tile columns 0..5, rows 1..6 once.
+  Framebuffer c(8, 8);
+  std::vector<ClipVertex> both = t;
+  const std::vector<ClipVertex> upper = windowTriangles(vp, {{6.5, 0.5, 0.5}, {6.5, 6.5, 0.5}, {0.5, 6.5, 0.5}});
+  both.insert(both.end(), upper.begin(), upper.end());
+  CHECK(coverageOf(c, both) == rows({"........",
+                                     "111111..",
+                                     "111111..",
+                                     "111111..",
+                                     "111111..",
+                                     "111111..",
+                                     "111111..",
+                                     "........"}));
+}
+
+TEST_CASE("top-left rule: a triangle with a top edge and two slanted edges through centres", "[raster][coverage]") {
+  // (0.5, 6.5) (3.5, 0.5) (6.5, 6.5): the top edge y = 6.5 and the left edge are in, the right edge
+  // is out. Row y (centre py = y + .5) holds px >= 0.5 + (6.5 - py) / 2 and px < 3.5 + (py - 0.5) / 2.
+  const std::string expected = rows({"........",
+                                     "111111..",
+                                     ".11111..",
+                                     ".1111...",
+                                     "..111...",
+                                     "..11....",
+                                     "...1....",
+                                     "........"});
+  Framebuffer a(8, 8), b(8, 8);
+  const std::vector<ClipVertex> t =
+      windowTriangles(fullViewportState(a).viewport, {{0.5, 6.5, 0.5}, {3.5, 0.5, 0.5}, {6.5, 6.5, 0.5}});
+  CHECK(coverageOf(a, t) == expected);
+  CHECK(coverageOf(b, reversed(t)) == expected);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Watertightness: meshes counted with INCR must give 1 on every pixel of their union, 0 outside.
+
+namespace {
+
+struct IndexedMesh {
+  std::vector<ClipVertex> vertices;
+  std::vector<uint32_t> indices;
+  Polygon2 outline;  // window space
+};
+
+enum class Winding { CCW, CW, Mixed };
+
+// Window point -> clip vertex, scaled by a random w so the divide is exercised too.
+ClipVertex clipVertexAt(const Viewport& vp, const glm::dvec2& p, TestRandom& rng) {
+  ClipVertex v = windowVertex(vp, p.x, p.y, 0.5);
+  v.position *= rng.uniform(0.5, 4.0);
+  return v;
+}
+
+void addTriangle(IndexedMesh& m, uint32_t a, uint32_t b, uint32_t c, Winding winding, TestRandom& rng) {
+  const bool flip = winding == Winding::CW || (winding == Winding::Mixed && rng.below(2) == 1);
+  m.indices.insert(m.indices.end(), {a, flip ? c : b, flip ? b : c});
+}
+
+// An n x n jittered grid over [-6, 70]^2 (beyond a 64x64 viewport on every side), each cell split
+// along a random diagonal. `a` and `b` wind counter-clockwise before `winding` is applied.
+IndexedMesh jitteredGrid(const Viewport& vp, int n, uint64_t seed, Winding winding) {
+  TestRandom rng(seed);
+  IndexedMesh m;
+  const double lo = -6.0, cell = 76.0 / n;
+  std::vector<glm::dvec2> points;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      points.push_back({lo + cell * i + rng.uniform(-0.3, 0.3) * cell, lo + cell * j + rng.uniform(-0.3, 0.3) * cell});
+  for (const glm::dvec2& p : points) m.vertices.push_back(clipVertexAt(vp, p, rng));
+  auto at = [&](int i, int j) { return uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (rng.below(2) == 0) {
+        addTriangle(m, at(i, j), at(i + 1, j), at(i + 1, j + 1), winding, rng);
+        addTriangle(m, at(i, j), at(i + 1, j + 1), at(i, j + 1), winding, rng);
+      } else {
+        addTriangle(m, at(i, j), at(i + 1, j), at(i, j + 1), winding, rng);
+        addTriangle(m, at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), winding, rng);
+      }
+    }
+  for (int i = 0; i <= n; ++i) m.outline.push_back(points[at(i, 0)]);
+  for (int j = 1; j <= n; ++j) m.outline.push_back(points[at(n, j)]);
+  for (int i = n - 1; i >= 0; --i) m.outline.push_back(points[at(i, n)]);
+  for (int j = n - 1; j >= 1; --j) m.outline.push_back(points[at(0, j)]);
+  return m;
+}
+
+// `count` triangles around `centre`, outer vertices at jittered angles and radii in [rMin, rMax].
+IndexedMesh fan(const Viewport& vp, const glm::dvec2& centre, int count, double rMin, double rMax, uint64_t seed,
+                Winding winding) {
+  TestRandom rng(seed);
+  IndexedMesh m;
+  m.vertices.push_back(clipVertexAt(vp, centre, rng));
+  for (int k = 0; k < count; ++k) {
+    const double angle = 2.0 * std::numbers::pi * (k + rng.uniform(0.0, 0.8)) / count;
+    const double r = rng.uniform(rMin, rMax);
+    const glm::dvec2 p = centre + r * glm::dvec2(std::cos(angle), std::sin(angle));
+    m.outline.push_back(p);
+    m.vertices.push_back(clipVertexAt(vp, p, rng));
+  }
+  for (int k = 0; k < count; ++k)
+    addTriangle(m, 0, uint32_t(1 + k), uint32_t(1 + (k + 1) % count), winding, rng);
+  return m;
+}
+
+// Draws the mesh with INCR and compares every pixel with the independent union of its outline.
+void requireCoveredExactlyOnce(const IndexedMesh& m, int size) {
+  Framebuffer fb(size, size);
+  const RenderState s = coverageCountingState(fb);
+  Renderer r(fb);
+  DrawCall call;
+  call.state = &s;
+  call.vertices = m.vertices;
+  call.indices = m.indices;
+  r.draw(call);
+
+  int wrong = 0, inside = 0;
+  const std::string pic = picture(size, size, [&](int x, int y) {
+    const int count = fb.stencilAt(x, y);
+    const int expected = expectedCoverage(m.outline, {x + 0.5, y + 0.5}, kEdgeMargin);
+    inside += expected == 1;
+    const bool ok = count <= 1 && (expected < 0 || count == expected);
+    wrong += !ok;
+    if (ok) return count == 0 ? '.' : '1';
+    return count == 0 ? 'o' : 'X';
+  });
+  INFO("o: missing, X: wrong count\n" << pic);
+  CHECK(wrong == 0);
+  CHECK(inside > 0);
+}
+
+const char* windingName(Winding w) { return w == Winding::CCW ? "CCW" : w == Winding::CW ? "CW" : "mixed"; }
+
+}  // namespace
+
+TEST_CASE("watertight: random jittered grid meshes cover their union exactly once", "[raster][watertight]") {
+  Framebuffer probe(64, 64);
+  const Viewport vp = fullViewportState(probe).viewport;
+  for (Winding winding : {Winding::CCW, Winding::CW, Winding::Mixed}) {
+    for (uint64_t seed = 1; seed <= 8; ++seed) {
+      INFO("winding " << windingName(winding) << ", seed " << seed);
+      requireCoveredExactlyOnce(jitteredGrid(vp, 12, seed, winding), 64);
+    }
+  }
+  // A fine grid: cells about one pixel wide, so many vertices share pixels.
+  for (uint64_t seed = 100; seed < 103; ++seed) {
+    INFO("fine grid, seed " << seed);
+    requireCoveredExactlyOnce(jitteredGrid(vp, 70, seed, Winding::Mixed), 64);
+  }
+}
+
+TEST_CASE("watertight: 64-triangle fans cover their union exactly once, also around a pixel centre",
+          "[raster][watertight]") {
+  Framebuffer probe(64, 64);
+  const Viewport vp = fullViewportState(probe).viewport;
+  const glm::dvec2 centres[] = {
+      {32.5, 32.5},          // exactly on a pixel centre: all 64 triangles meet there
+      {32.0, 32.0},          // on a pixel corner
+      {20.5, 41.0},          // on a pixel edge midpoint line
+      {31.377, 29.8125},     // arbitrary
+      {3.25, 60.6},          // near a corner: much of the fan is outside the viewport
+  };
+  for (Winding winding : {Winding::CCW, Winding::CW, Winding::Mixed}) {
+    uint64_t seed = 7;
+    for (const glm::dvec2& c : centres) {
+      INFO("winding " << windingName(winding) << ", centre " << c.x << "," << c.y << ", seed " << seed);
+      requireCoveredExactlyOnce(fan(vp, c, 64, 10.0, 45.0, seed++, winding), 64);
+    }
+  }
+}

@@ -1,0 +1,176 @@
+// Triangle setup: facing and culling, and the GL 1.1 polygon offset computed from the snapped
+// window-space triangle.
+#include <cmath>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "raster/projection.h"
+#include "raster/renderer.h"
+#include "raster/triangle_setup.h"
+#include "support/raster_harness.h"
+
+using namespace shadowref;
+using namespace shadowref::testing;
+
+namespace {
+
+const char* cullName(CullMode c) {
+  switch (c) {
+    case CullMode::None: return "NONE";
+    case CullMode::Front: return "FRONT";
+    case CullMode::Back: return "BACK";
+    case CullMode::FrontAndBack: return "FRONT_AND_BACK";
+  }
+  return "?";
+}
+
+// Whether a triangle of the given winding reaches the stencil under (cull, frontFace).
+bool drawn(CullMode cull, FrontFace frontFace, bool counterClockwise, bool clippedByNearPlane) {
+  Framebuffer fb(8, 8);
+  RenderState s = coverageCountingState(fb);
+  s.cull = cull;
+  s.frontFace = frontFace;
+  std::vector<ClipVertex> v;
+  if (!clippedByNearPlane) {
+    v = windowTriangles(s.viewport, {{1, 1, 0.5}, {7, 1, 0.5}, {1, 7, 0.5}});  // counter-clockwise
+  } else {
+    // The same window triangle, but its third vertex lies behind the eye (w < 0), so the clipper
+    // replaces it; the facing must come from the clipped polygon, which keeps the winding.
+    const glm::dmat4 p = frustum(-1, 1, -1, 1, 1, 100);
+    v.resize(3);
+    v[0].position = p * glm::dvec4(-1.5, -1.5, -2, 1);
+    v[1].position = p * glm::dvec4(1.5, -1.5, -2, 1);
+    v[2].position = p * glm::dvec4(-0.5, 4.0, 1, 1);
+  }
+  if (!counterClockwise) std::swap(v[1], v[2]);
+  Renderer r(fb);
+  draw(r, s, v);
+  int covered = 0;
+  for (uint8_t c : fb.stencil()) covered += c;
+  return covered > 0;
+}
+
+}  // namespace
+
+TEST_CASE("culling x front face: a triangle is drawn unless its facing is culled", "[raster][cull]") {
+  struct Case {
+    CullMode cull;
+    FrontFace frontFace;
+    bool ccw;
+    bool drawn;
+  };
+  const Case cases[] = {
+      {CullMode::None, FrontFace::CCW, true, true},           {CullMode::None, FrontFace::CCW, false, true},
+      {CullMode::None, FrontFace::CW, true, true},            {CullMode::None, FrontFace::CW, false, true},
+      {CullMode::Front, FrontFace::CCW, true, false},         {CullMode::Front, FrontFace::CCW, false, true},
+      {CullMode::Front, FrontFace::CW, true, true},           {CullMode::Front, FrontFace::CW, false, false},
+      {CullMode::Back, FrontFace::CCW, true, true},           {CullMode::Back, FrontFace::CCW, false, false},
+      {CullMode::Back, FrontFace::CW, true, false},           {CullMode::Back, FrontFace::CW, false, true},
+      {CullMode::FrontAndBack, FrontFace::CCW, true, false},  {CullMode::FrontAndBack, FrontFace::CCW, false, false},
+      {CullMode::FrontAndBack, FrontFace::CW, true, false},   {CullMode::FrontAndBack, FrontFace::CW, false, false},
+  };
+  for (const Case& c : cases) {
+    INFO("cull " << cullName(c.cull) << ", front face " << (c.frontFace == FrontFace::CCW ? "CCW" : "CW")
+                 << ", triangle " << (c.ccw ? "CCW" : "CW"));
+    CHECK(drawn(c.cull, c.frontFace, c.ccw, false) == c.drawn);
+    CHECK(drawn(c.cull, c.frontFace, c.ccw, true) == c.drawn);
+  }
+}
+
+TEST_CASE("facing follows the signed window area with row 0 at the bottom", "[raster][cull]") {
+  Framebuffer fb(8, 8);
+  const Viewport vp = fullViewportState(fb).viewport;
+  const ClipVertex a = windowVertex(vp, 1, 1), b = windowVertex(vp, 7, 1), c = windowVertex(vp, 1, 7);
+  const WindowVertex wa = toWindow(a, vp), wb = toWindow(b, vp), wc = toWindow(c, vp);
+  CHECK(signedArea2(wa, wb, wc) == 6 * 6 * 256 * 256);  // counter-clockwise, y up
+  CHECK(signedArea2(wa, wc, wb) == -6 * 6 * 256 * 256);
+  CHECK(facingOf(signedArea2(wa, wb, wc), FrontFace::CCW) == FrontFacing);
+  CHECK(facingOf(signedArea2(wa, wb, wc), FrontFace::CW) == BackFacing);
+  CHECK(facingOf(signedArea2(wa, wc, wb), FrontFace::CW) == FrontFacing);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Polygon offset, GL 1.1 §3.5.5: o = factor * m + units * r, m = max(|dz/dx|, |dz/dy|).
+
+namespace {
+
+// Window triangle (0,0) (16,0) (0,16) with depth 0.25 + a x + b y.
+TriangleSetup slopedTriangle(const Viewport& vp, double a, double b, const RenderState& s, const DepthCodec& codec) {
+  const ClipVertex v0 = windowVertex(vp, 0, 0, 0.25);
+  const ClipVertex v1 = windowVertex(vp, 16, 0, 0.25 + 16 * a);
+  const ClipVertex v2 = windowVertex(vp, 0, 16, 0.25 + 16 * b);
+  TriangleSetup t;
+  REQUIRE(setupTriangle(toWindow(v0, vp), toWindow(v1, vp), toWindow(v2, vp), FrontFacing, s, codec, t));
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("polygon offset = factor * max depth slope + units * r (GL 1.1 formula)", "[raster][depth][offset]") {
+  Framebuffer fb(16, 16);
+  RenderState s = fullViewportState(fb);
+  const PolygonOffset po{true, 2.0, 3.0};
+  const DepthCodec u{DepthFormat::Unorm24}, f{DepthFormat::Float32};
+  // dz/dx = 1/64, dz/dy = -1/128: m = 1/64; vertex depths 0.25, 0.5, 0.125, so z_max = 0.5.
+  {
+    const TriangleSetup t = slopedTriangle(s.viewport, 1.0 / 64, -1.0 / 128, s, u);
+    CHECK(polygonOffset(t, po, u) == 2.0 / 64 + 3.0 / 16777215.0);
+    CHECK(polygonOffset(t, po, f) == 2.0 / 64 + 3.0 * std::ldexp(1.0, -24));  // 0.5 has exponent -1
+  }
+  // dz/dx = 1/128, dz/dy = -1/64: the y slope is the larger in magnitude; depths 0.25, 0.375,
+  // 0.0, so z_max = 0.375 -> r = 2^-25.
+  {
+    const TriangleSetup t = slopedTriangle(s.viewport, 1.0 / 128, -1.0 / 64, s, u);
+    CHECK(polygonOffset(t, po, u) == 2.0 / 64 + 3.0 / 16777215.0);
+    CHECK(polygonOffset(t, po, f) == 2.0 / 64 + 3.0 * std::ldexp(1.0, -25));
+  }
+  // A triangle of constant depth has m = 0: only the units term is left.
+  {
+    const TriangleSetup t = slopedTriangle(s.viewport, 0.0, 0.0, s, u);
+    CHECK(polygonOffset(t, {true, 100.0, -1.0}, u) == -1.0 / 16777215.0);
+  }
+  // The setup stores it only when polygon offset is enabled.
+  s.polygonOffset = po;
+  const TriangleSetup on = slopedTriangle(s.viewport, 1.0 / 64, -1.0 / 128, s, u);
+  CHECK(on.depthOffset == 2.0 / 64 + 3.0 / 16777215.0);
+  s.polygonOffset.enabled = false;
+  const TriangleSetup off = slopedTriangle(s.viewport, 1.0 / 64, -1.0 / 128, s, u);
+  CHECK(off.depthOffset == 0.0);
+}
+
+TEST_CASE("polygon offset shifts every fragment's depth by o before it is stored", "[raster][depth][offset]") {
+  for (DepthFormat format : {DepthFormat::Float32, DepthFormat::Unorm24}) {
+    INFO((format == DepthFormat::Float32 ? "float32" : "unorm24"));
+    Framebuffer fb(16, 16, format);
+    RenderState s = fullViewportState(fb);
+    s.depthTest = true;
+    s.depthFunc = CompareFunc::Always;
+    s.polygonOffset = {true, 2.0, 3.0};
+    const double a = 1.0 / 64, b = -1.0 / 128;
+    const double r = format == DepthFormat::Unorm24 ? 1.0 / 16777215.0 : std::ldexp(1.0, -24);
+    const double o = 2.0 * (1.0 / 64) + 3.0 * r;
+    Renderer rr(fb);
+    draw(rr, s, windowTriangles(s.viewport, {{0, 0, 0.25}, {16, 0, 0.25 + 16 * a}, {0, 16, 0.25 + 16 * b}}));
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x + y < 15; ++x) {  // centres strictly inside x + y < 16
+        INFO("pixel " << x << "," << y);
+        const double z = 0.25 + a * (x + 0.5) + b * (y + 0.5) + o;
+        CHECK(fb.depthCodes()[fb.index(x, y)] == fb.depthCodec().encode(z));
+      }
+  }
+}
+
+TEST_CASE("polygon offset below 0 or above 1 is clamped to the depth range", "[raster][depth][offset]") {
+  Framebuffer fb(4, 4);
+  RenderState s = fullViewportState(fb);
+  s.depthTest = true;
+  s.depthFunc = CompareFunc::Always;
+  s.polygonOffset = {true, 0.0, -1e9};  // o = -1e9 * 2^-25
+  Renderer r(fb);
+  draw(r, s, windowRect(s.viewport, 0, 0, 4, 4, 0.25));
+  CHECK(fb.depthAt(1, 1) == 0.0);
+  s.polygonOffset = {true, 0.0, 1e9};
+  draw(r, s, windowRect(s.viewport, 0, 0, 4, 4, 0.25));
+  CHECK(fb.depthAt(1, 1) == 1.0);
+}
