@@ -21,14 +21,8 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
 }
 
-double FragmentProcessor::interpolateDepth(const TriangleSetup& t, int64_t e1, int64_t e2) {
-  const double inv = 1.0 / double(t.area2);
-  const double l1 = double(e1) * inv, l2 = double(e2) * inv;
-  return t.v[0].z + (l1 * (t.v[1].z - t.v[0].z) + l2 * (t.v[2].z - t.v[0].z));
-}
-
-double FragmentProcessor::fragmentDepth(const TriangleSetup& t, int64_t e1, int64_t e2) const {
-  double z = interpolateDepth(t, e1, e2) + t.depthOffset;
+double FragmentProcessor::fragmentDepth(const TriangleSetup& t, int x, int y) const {
+  double z = planeDepthAt(t, x, y) + t.depthOffset;
   if (state_.depthClamp) z = std::clamp(z, depthLo_, depthHi_);
   return z;  // the depth codec clamps to [0, 1] when it converts
 }
@@ -76,7 +70,7 @@ void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0
     if (fb_.hasColor()) event.colorBefore = event.colorAfter = fb_.color()[at];
   }
 
-  const double z = fragmentDepth(t, e1, e2);
+  const double z = fragmentDepth(t, x, y);
   const uint32_t zCode = fb_.depthCodec().encode(z);
   if (watched) event.depth = fb_.depthCodec().decode(zCode);
 

@@ -27,11 +27,8 @@ class FragmentProcessor {
 
   void process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2);
 
-  // Window depth at a pixel from the edge-function values: z = z0 + l1 (z1 - z0) + l2 (z2 - z0).
-  static double interpolateDepth(const TriangleSetup& t, int64_t e1, int64_t e2);
-
  private:
-  double fragmentDepth(const TriangleSetup& t, int64_t e1, int64_t e2) const;
+  double fragmentDepth(const TriangleSetup& t, int x, int y) const;
   void interpolateVaryings(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2, double* out) const;
   glm::dvec4 shade(const TriangleSetup& t, int x, int y, double z, int64_t e0, int64_t e1, int64_t e2) const;
 

@@ -27,14 +27,37 @@ int lastPixelAtOrBefore(int64_t fixed) {
   return int(t >= 0 ? t / kSubpixelOne : -((-t + kSubpixelOne - 1) / kSubpixelOne));
 }
 
+// The depth plane's slopes from the unsnapped window coordinates; from the snapped ones when the
+// unsnapped triangle has no area in double precision (a sliver that snapping opened up).
+void computeDepthPlane(TriangleSetup& t) {
+  double x1 = t.v[1].fx - t.v[0].fx, y1 = t.v[1].fy - t.v[0].fy;
+  double x2 = t.v[2].fx - t.v[0].fx, y2 = t.v[2].fy - t.v[0].fy;
+  double det = x1 * y2 - x2 * y1;
+  if (!(det > 0.0)) {  // not counter-clockwise in double (or NaN): use the snapped vertices
+    const double s = 1.0 / double(kSubpixelOne);
+    x1 = double(t.v[1].x - t.v[0].x) * s;
+    y1 = double(t.v[1].y - t.v[0].y) * s;
+    x2 = double(t.v[2].x - t.v[0].x) * s;
+    y2 = double(t.v[2].y - t.v[0].y) * s;
+    det = x1 * y2 - x2 * y1;
+    t.v[0].fx = double(t.v[0].x) * s;  // the plane then passes through the snapped vertex 0
+    t.v[0].fy = double(t.v[0].y) * s;
+  }
+  const double z1 = t.v[1].z - t.v[0].z, z2 = t.v[2].z - t.v[0].z;
+  t.dzdx = (z1 * y2 - z2 * y1) / det;
+  t.dzdy = (x1 * z2 - x2 * z1) / det;
+}
+
 }  // namespace
 
 WindowVertex toWindow(const ClipVertex& v, const Viewport& vp) {
   const double invW = 1.0 / v.position.w;
   const double xn = v.position.x * invW, yn = v.position.y * invW, zn = v.position.z * invW;
   WindowVertex w;
-  w.x = snap(double(vp.x) + (xn + 1.0) * 0.5 * double(vp.width));
-  w.y = snap(double(vp.y) + (yn + 1.0) * 0.5 * double(vp.height));
+  w.fx = double(vp.x) + (xn + 1.0) * 0.5 * double(vp.width);
+  w.fy = double(vp.y) + (yn + 1.0) * 0.5 * double(vp.height);
+  w.x = snap(w.fx);
+  w.y = snap(w.fy);
   w.z = vp.nearVal + (zn + 1.0) * 0.5 * (vp.farVal - vp.nearVal);
   w.invW = invW;
   w.source = &v;
@@ -93,20 +116,18 @@ bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   t.maxX = lastPixelAtOrBefore(x1);
   t.minY = firstPixelAtOrAfter(y0);
   t.maxY = lastPixelAtOrBefore(y1);
+  computeDepthPlane(t);
   t.depthOffset = state.polygonOffset.enabled ? polygonOffset(t, state.polygonOffset, codec) : 0.0;
   return true;
 }
 
+double planeDepthAt(const TriangleSetup& t, int px, int py) {
+  const double cx = double(px) + 0.5, cy = double(py) + 0.5;
+  return t.v[0].z + (t.dzdx * (cx - t.v[0].fx) + t.dzdy * (cy - t.v[0].fy));
+}
+
 double polygonOffset(const TriangleSetup& t, const PolygonOffset& po, const DepthCodec& codec) {
-  // Depth slopes in window units per pixel, from the plane through the three vertices.
-  const double s = 1.0 / double(kSubpixelOne);
-  const double x1 = double(t.v[1].x - t.v[0].x) * s, y1 = double(t.v[1].y - t.v[0].y) * s;
-  const double x2 = double(t.v[2].x - t.v[0].x) * s, y2 = double(t.v[2].y - t.v[0].y) * s;
-  const double z1 = t.v[1].z - t.v[0].z, z2 = t.v[2].z - t.v[0].z;
-  const double det = x1 * y2 - x2 * y1;
-  const double dzdx = (z1 * y2 - z2 * y1) / det;
-  const double dzdy = (x1 * z2 - x2 * z1) / det;
-  const double m = std::max(std::fabs(dzdx), std::fabs(dzdy));
+  const double m = std::max(std::fabs(t.dzdx), std::fabs(t.dzdy));
   const double zMax = std::clamp(std::max({t.v[0].z, t.v[1].z, t.v[2].z}), 0.0, 1.0);
   return po.factor * m + po.units * codec.resolvableDifference(zMax);
 }

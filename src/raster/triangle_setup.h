@@ -21,6 +21,7 @@ inline constexpr int64_t kSubpixelHalf = kSubpixelOne / 2;
 
 struct WindowVertex {
   int64_t x = 0, y = 0;  // fixed point, 1/256 pixel
+  double fx = 0.0, fy = 0.0;  // the same before snapping: the depth plane is built from these
   double z = 0.0;        // window depth (glDepthRange applied), unclamped
   double invW = 0.0;     // 1 / w_clip, for perspective-correct varyings
   const ClipVertex* source = nullptr;
@@ -48,6 +49,10 @@ struct TriangleSetup {
   int64_t bias[3]{};       // 0 for top-left edges, -1 otherwise: E_i + bias_i >= 0 covers
   int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixels whose centres may be covered
   double depthOffset = 0.0;
+  // Window depth as a plane through the UNSNAPPED vertices, as GL implementations compute it
+  // (snapping moves a vertex by up to 1/512 pixel; on a steep plane that would be hundreds of
+  // 24-bit depth units): z(x, y) = z0 + dzdx (x - fx0) + dzdy (y - fy0) at pixel centres.
+  double dzdx = 0.0, dzdy = 0.0;
 
   // E_i at the centre of pixel (px, py).
   int64_t edgeAt(int i, int px, int py) const;
@@ -57,6 +62,9 @@ struct TriangleSetup {
 // snapped triangle has no area. Vertex order is made counter-clockwise here.
 bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
                    const RenderState& state, const DepthCodec& codec, TriangleSetup& out);
+
+// Window depth of the triangle's plane at the centre of pixel (px, py), before offset.
+double planeDepthAt(const TriangleSetup& t, int px, int py);
 
 // GL 1.1 polygon offset: factor * max(|dz/dx|, |dz/dy|) + units * r.
 double polygonOffset(const TriangleSetup& t, const PolygonOffset& po, const DepthCodec& codec);

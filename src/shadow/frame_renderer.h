@@ -13,6 +13,13 @@
 
 namespace shadowref {
 
+// Teaching views of the volumes drawn over the finished frame.
+enum class VolumeViewMode : uint8_t {
+  None,
+  FrontBack,  // front faces red, back faces blue (003)
+  Overlay,    // translucent red volumes over the scene (004, render mode 2)
+};
+
 struct FrameOptions {
   std::optional<ShadowMethod> method;  // overrides the scene's shadow.method
   // Pixel history: every fragment at (x, y) is reported to the observer.
@@ -20,6 +27,9 @@ struct FrameOptions {
   FragmentObserver* observer = nullptr;
   // Called after every pass with its name ("01-ambient", ...) and the framebuffer as it stands.
   std::function<void(const std::string& pass, const Framebuffer&)> onPass;
+  // Keep a copy of the stencil buffer after each light's volume pass (--dump stencil).
+  bool keepStencil = false;
+  VolumeViewMode volumeView = VolumeViewMode::None;
 };
 
 struct PassTiming {
@@ -32,6 +42,10 @@ struct FrameResult {
   RasterStats stats;
   std::vector<PassTiming> timings;
   std::vector<std::string> notes;  // per-light statistics lines for --stats
+  // With FrameOptions::keepStencil: the stencil counts after each light's volume pass, and the
+  // light's name ("L0", "L1", ... in the order of the expanded light list).
+  std::vector<std::vector<uint8_t>> stencilPerLight;
+  std::vector<std::string> stencilLightNames;
 };
 
 // Throws std::runtime_error for a method this build cannot render.

@@ -83,11 +83,11 @@ bool withinRange(const Light& light, const Aabb& b) {
 namespace {
 
 void drawInstance(Renderer& renderer, const RenderState& state, const PreparedInstance& p, const LightingSetup& lighting,
-                  const Material& material) {
+                  const Material& material, DrawKind kind) {
   DrawCall call;
   call.state = &state;
   call.indices = p.indices;
-  call.tag = uint32_t(p.index);
+  call.tag = drawTag(kind, p.index);
   if (material.shading == ShadingModel::PerPixel) {
     const PerPixelLightingShader shader(lighting);
     call.vertices = p.vertices;
@@ -112,7 +112,8 @@ void drawInstance(Renderer& renderer, const RenderState& state, const PreparedIn
 }  // namespace
 
 void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
-             std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient) {
+             std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
+             DrawKind kind) {
   for (const PreparedInstance& p : prepared) {
     const Material& material = scene.materials.at(size_t(p.instance->material));
     LightingSetup lighting;
@@ -123,22 +124,23 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
     for (const Light& light : lights)
       if (withinRange(light, p.instance->worldBounds)) lighting.lights.push_back(toPhongLight(light));
     if (!includeAmbient && lighting.lights.empty()) continue;
-    drawInstance(renderer, state, p, lighting, material);
+    drawInstance(renderer, state, p, lighting, material, kind);
   }
 }
 
 void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
-                 std::span<const PreparedInstance> prepared) {
-  drawLit(renderer, state, scene, view, prepared, {}, true);
+                 std::span<const PreparedInstance> prepared, DrawKind kind) {
+  drawLit(renderer, state, scene, view, prepared, {}, true, kind);
 }
 
-void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared) {
+void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared,
+                   DrawKind kind) {
   for (const PreparedInstance& p : prepared) {
     DrawCall call;
     call.state = &state;
     call.vertices = p.vertices;
     call.indices = p.indices;
-    call.tag = uint32_t(p.index);
+    call.tag = drawTag(kind, p.index);
     renderer.draw(call);
   }
 }

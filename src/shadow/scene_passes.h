@@ -10,6 +10,7 @@
 #include "raster/vertex.h"
 #include "raster/vertex_stage.h"
 #include "scene/scene.h"
+#include "shadow/draw_tag.h"
 #include "shadow/scene_view.h"
 
 namespace shadowref {
@@ -36,13 +37,15 @@ bool withinRange(const Light& light, const Aabb& worldBounds);
 // Draws every instance with lighting from `lights` (only those in range of each instance), the
 // ambient term included when `includeAmbient`. Per-pixel or Gouraud, as each material says.
 void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
-             std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient);
+             std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
+             DrawKind kind = DrawKind::Lit);
 
 // Ambient light only (step 1 of 000 §3.1): fills the depth buffer.
 void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
-                 std::span<const PreparedInstance> prepared);
+                 std::span<const PreparedInstance> prepared, DrawKind kind = DrawKind::Ambient);
 
 // Depth (and stencil) only, no colour.
-void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared);
+void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared,
+                   DrawKind kind = DrawKind::ShadowMap);
 
 }  // namespace shadowref

@@ -26,8 +26,6 @@ TEST_CASE("triangles crossing the near plane and reaching points at infinity cli
   Scenario sc;
   sc.name = "P_inf: near-plane crossings, w = 0 vertices, far plane off";
   sc.width = sc.height = kSize;
-  sc.depthTolerance = 1024;
-  sc.note = "clipped vertices off the 1/256 grid: depth plane of the snapped triangle (§Snapped depth)";
   DrawStep d;
   d.state = fullViewportState(kSize, kSize);
   d.state.clipFar = false;  // GL clips at z = w, which P_inf never crosses: the same result
@@ -55,8 +53,10 @@ TEST_CASE("with depth clamp under P_inf, geometry behind the near plane is kept 
   Scenario sc;
   sc.name = "P_inf with depth clamp: near-plane crossings";
   sc.width = sc.height = kSize;
-  sc.depthTolerance = 1024;
-  sc.note = "steep depth, vertices off the 1/256 grid: depth plane of the snapped triangle (§Snapped depth)";
+  // The window-space depth gradient is steep here (w down to 0.2); Mesa sets the plane up and
+  // evaluates it in float, shadowref in double from the same vertices (docs/conformance.md).
+  sc.depthTolerance = 4;
+  sc.note = "steep depth near the eye: Mesa's float plane evaluation";
   DrawStep d;
   d.state = fullViewportState(kSize, kSize);
   d.state.depthClamp = true;

@@ -161,13 +161,12 @@ TEST_CASE("depth clamp keeps triangles beyond the near and far planes and clamps
   checkAgreement(runCase(sc));
 }
 
-// Known difference, reported to the raster owner: shadowref interpolates depth with barycentric
-// weights of the triangle snapped to 1/256 pixel while keeping the unsnapped vertex depths, so a
-// steep triangle's depth is off by |grad z| * (snap displacement <= 1/512 px). Mesa (both drivers)
-// evaluates the plane through the unsnapped float vertices. Marked !mayfail until the raster
-// pipeline changes; it then passes and the tag should go.
+// Regression: shadowref once interpolated depth with barycentric weights of the triangle snapped to
+// 1/256 pixel while keeping the unsnapped vertex depths, so a steep triangle's depth was off by
+// |grad z| * (snap displacement <= 1/512 px) — hundreds of 24-bit units. Mesa (both drivers), and
+// now shadowref, evaluate the plane through the unsnapped vertices.
 TEST_CASE("the depth of a steep triangle with vertices off the sub-pixel grid is the exact plane depth",
-          "[conformance][depth][snapped][!mayfail]") {
+          "[conformance][depth][snapped]") {
   Scenario sc;
   sc.name = "steep plane, vertices off the 1/256 grid";
   sc.width = sc.height = kSize;

@@ -1,0 +1,226 @@
+#include "shadow/volume_renderer.h"
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include "raster/clear.h"
+#include "raster/fragment_shader.h"
+#include "shadow/draw_tag.h"
+#include "shadow/facing.h"
+#include "shadow/occlusion_pyramid.h"
+#include "shadow/scene_passes.h"
+#include "shadow/scene_view.h"
+#include "shadow/shadow_volume.h"
+#include "shadow/soft_lights.h"
+#include "shadow/stencil_counting.h"
+
+namespace shadowref {
+
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The counting an object gets: fixed by the method, or McGuire's choice for `auto`
+// (000 §4.2.1, §4.3.2): z-fail only where the object's box reaches into the occlusion pyramid
+// between the light and the near plane, where z-pass could miscount.
+StencilCounting countingFor(ShadowMethod method, const Instance& inst, const Scene& scene, const SceneView& view,
+                            const Light& light) {
+  if (method == ShadowMethod::ZPass) return StencilCounting::ZPass;
+  if (method == ShadowMethod::ZFail) return StencilCounting::ZFail;
+  return needsZFail(inst.worldBounds, scene.camera, view.aspect, light.homogeneous()) ? StencilCounting::ZFail
+                                                                                      : StencilCounting::ZPass;
+}
+
+struct LightTotals {
+  size_t objects = 0, zpass = 0, zfail = 0;
+  ShadowVolumeStats volume;
+};
+
+// One instance's volume for one light, transformed to clip space with the instance's own
+// VertexTransform: the front cap's vertices are the scene pass's vertices, bit for bit.
+struct VolumeDraw {
+  ShadowVolume volume;
+  ShadowVolumeWorkspace workspace;
+  std::vector<ClipVertex> vertices;
+  std::vector<uint32_t> indices;
+
+  void build(const PreparedInstance& p, const Light& light, const ShadowSettings& settings, bool withCaps) {
+    const glm::dvec4 objectLight = lightInObjectSpace(p.instance->world, light.homogeneous());
+    buildShadowVolume(*p.instance->shadowMesh, objectLight, settings.silhouette, withCaps, volume, &workspace);
+    vertices.resize(volume.positions.size());
+    for (size_t i = 0; i < volume.positions.size(); ++i) vertices[i].position = p.transform.toClip(volume.positions[i]);
+  }
+
+  void draw(Renderer& renderer, const RenderState& state, VolumePart part, DrawKind kind, int instance,
+            const FragmentShader* shader = nullptr) {
+    const std::vector<glm::uvec3>& triangles = volume.part(part);
+    if (triangles.empty()) return;
+    indices.clear();
+    for (const glm::uvec3& t : triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    DrawCall call;
+    call.state = &state;
+    call.vertices = vertices;
+    call.indices = indices;
+    call.shader = shader;
+    call.tag = drawTag(kind, instance);
+    renderer.draw(call);
+  }
+
+  void drawAll(Renderer& renderer, const RenderState& state, int instance, const FragmentShader* shader = nullptr) {
+    draw(renderer, state, VolumePart::Side, DrawKind::VolumeSides, instance, shader);
+    draw(renderer, state, VolumePart::FrontCap, DrawKind::FrontCap, instance, shader);
+    draw(renderer, state, VolumePart::BackCap, DrawKind::BackCap, instance, shader);
+  }
+};
+
+bool castsFor(const PreparedInstance& p, const Light& light) {
+  return p.instance->shadowMesh != nullptr && withinRange(light, p.instance->worldBounds);
+}
+
+// Step 2: the volumes of every caster into the (cleared) stencil buffer.
+LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Scene& scene, const SceneView& view,
+                           std::span<const PreparedInstance> prepared, const Light& light, ShadowMethod method,
+                           VolumeDraw& scratch) {
+  LightTotals totals;
+  const CountingOptions counting{scene.shadow.twoSidedStencil, scene.shadow.wrapOps};
+  for (const PreparedInstance& p : prepared) {
+    if (!castsFor(p, light)) continue;
+    const StencilCounting how = countingFor(method, *p.instance, scene, view, light);
+    scratch.build(p, light, scene.shadow, how == StencilCounting::ZFail);
+    ++totals.objects;
+    ++(how == StencilCounting::ZFail ? totals.zfail : totals.zpass);
+    totals.volume.silhouetteEdges += scratch.volume.stats.silhouetteEdges;
+    totals.volume.sideTriangles += scratch.volume.stats.sideTriangles;
+    totals.volume.frontCapTriangles += scratch.volume.stats.frontCapTriangles;
+    totals.volume.backCapTriangles += scratch.volume.stats.backCapTriangles;
+    for (const RenderState& state : volumePassStates(base, how, counting)) scratch.drawAll(renderer, state, p.index);
+  }
+  return totals;
+}
+
+// Teaching views: 003's front faces red / back faces blue, or 004's translucent red volumes.
+void drawVolumeView(Renderer& renderer, const RenderState& base, const Scene& scene, const SceneView& view,
+                    std::span<const PreparedInstance> prepared, const std::vector<Light>& lights, ShadowMethod method,
+                    VolumeViewMode mode, VolumeDraw& scratch) {
+  RenderState state = base;
+  state.depthTest = true;
+  state.depthFunc = CompareFunc::Less;
+  state.depthWrite = false;
+  state.blend = {true, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha};
+  const ConstantColorShader red({1.0, 0.0, 0.0, mode == VolumeViewMode::Overlay ? 0.3 : 0.45});
+  const ConstantColorShader blue({0.0, 0.2, 1.0, 0.45});
+  for (const Light& light : lights) {
+    for (const PreparedInstance& p : prepared) {
+      if (!castsFor(p, light)) continue;
+      const StencilCounting how = countingFor(method, *p.instance, scene, view, light);
+      scratch.build(p, light, scene.shadow, how == StencilCounting::ZFail);
+      if (mode == VolumeViewMode::Overlay) {
+        state.cull = CullMode::None;
+        scratch.drawAll(renderer, state, p.index, &red);
+        continue;
+      }
+      state.cull = CullMode::Front;  // back faces
+      scratch.drawAll(renderer, state, p.index, &blue);
+      state.cull = CullMode::Back;   // front faces
+      scratch.drawAll(renderer, state, p.index, &red);
+    }
+  }
+}
+
+std::string lightNote(size_t index, const Light& light, const LightTotals& t, const RasterStats& before,
+                      const RasterStats& after) {
+  std::ostringstream s;
+  s << "light L" << index << " '" << light.name << "': " << t.objects << " casters (" << t.zpass << " z-pass, "
+    << t.zfail << " z-fail), silhouette edges " << t.volume.silhouetteEdges << ", side triangles "
+    << t.volume.sideTriangles << ", front cap " << t.volume.frontCapTriangles << ", back cap "
+    << t.volume.backCapTriangles << ", volume fragments " << (after.fragments - before.fragments)
+    << ", stencil writes " << (after.stencilWrites - before.stencilWrites);
+  return s.str();
+}
+
+std::string passName(int& counter, const std::string& what) {
+  char number[16];
+  std::snprintf(number, sizeof number, "%02d-", ++counter);
+  return number + what;
+}
+
+}  // namespace
+
+void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
+                         Renderer& renderer) {
+  // Volumes reach infinity: P_inf, no far clipping (000 §3.3).
+  const SceneView view = makeCameraView(scene, true);
+  const std::vector<Instance> instances = scene.instances();
+  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view);
+  Framebuffer& fb = renderer.framebuffer();
+  int passCounter = 0;
+  auto pass = [&](const std::string& what, auto&& fn) {
+    const auto start = std::chrono::steady_clock::now();
+    fn();
+    const std::string name = passName(passCounter, what);
+    result.timings.push_back({name, millisecondsSince(start)});
+    if (options.onPass) options.onPass(name, fb);
+  };
+
+  RenderState base;
+  base.viewport = view.viewport;
+  base.clipFar = false;
+  base.cull = CullMode::Back;
+  base.depthTest = true;
+  base.depthFunc = CompareFunc::Less;
+
+  std::vector<Light> lights;  // soft lights expanded (000 §3.6)
+  for (const Light& light : scene.lights)
+    for (const Light& l : expandSoftLight(light)) lights.push_back(l);
+
+  const bool darken = scene.shadow.darkenComposite;
+  pass(darken ? "lit" : "ambient", [&] {
+    clearColor(fb, base, glm::vec4(glm::vec3(scene.background), 1.0f));
+    clearDepth(fb, base, 1.0);
+    if (darken) drawLit(renderer, base, scene, view, prepared, lights, true, DrawKind::Lit);
+    else drawAmbient(renderer, base, scene, view, prepared);
+  });
+
+  RenderState volumeBase = base;
+  RenderState composite = base;
+  composite.depthFunc = CompareFunc::LEqual;
+  composite.depthWrite = false;
+  composite.stencilTest = true;
+  for (StencilFaceState& s : composite.stencil) {
+    s.func = darken ? CompareFunc::NotEqual : CompareFunc::Equal;
+    s.ref = 0;
+  }
+  if (!darken) composite.blend = {true, BlendFactor::One, BlendFactor::One};
+
+  VolumeDraw scratch;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const Light& light = lights[i];
+    const std::string suffix = "L" + std::to_string(i);
+    LightTotals totals;
+    const RasterStats before = renderer.stats();
+    pass("stencil-" + suffix, [&] {
+      clearStencil(fb, base, 0);
+      totals = drawVolumePass(renderer, volumeBase, scene, view, prepared, light, method, scratch);
+    });
+    result.notes.push_back(lightNote(i, light, totals, before, renderer.stats()));
+    if (options.keepStencil) {
+      result.stencilPerLight.push_back(fb.stencil());
+      result.stencilLightNames.push_back(suffix);
+    }
+    pass((darken ? "darken-" : "lit-") + suffix, [&] {
+      if (darken) drawAmbient(renderer, composite, scene, view, prepared, DrawKind::Darken);
+      else drawLit(renderer, composite, scene, view, prepared, std::span<const Light>(&light, 1), false);
+    });
+  }
+
+  if (options.volumeView != VolumeViewMode::None) {
+    pass(options.volumeView == VolumeViewMode::Overlay ? "volumes-overlay" : "volumes", [&] {
+      drawVolumeView(renderer, base, scene, view, prepared, lights, method, options.volumeView, scratch);
+    });
+  }
+}
+
+}  // namespace shadowref

@@ -1,0 +1,19 @@
+// Stencil shadow volumes, the whole frame (000 §3.1, §4.2; 003; 004; SPEC.md §3):
+//   1. ambient pass filling the depth buffer (P_inf, depth LESS);
+//   2. per light (soft lights expanded): clear stencil, draw every shadow caster's volume into the
+//      stencil buffer only, counting z-pass, z-fail or chosen per object (auto);
+//   3. lit pass where stencil == 0, depth LEQUAL, added with ONE/ONE, so lights add up (004).
+// Or 003's compositing: the fully lit scene first, then per light the ambient-only scene redrawn
+// where stencil != 0.
+#pragma once
+
+#include "raster/renderer.h"
+#include "scene/scene.h"
+#include "shadow/frame_renderer.h"
+
+namespace shadowref {
+
+void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
+                         Renderer& renderer);
+
+}  // namespace shadowref
