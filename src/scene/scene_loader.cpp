@@ -126,6 +126,8 @@ Scene buildScene(const YamlValue& root, const std::string& displayName, const st
     mergeInto(generator, o.asTree(1));
   }
   if (!generator.isNull() || root.find("generator")) runGenerator(generator, scene, where);
+  // A check of a value the file did not write (the default camera.up) points at its section.
+  for (const YamlEntry& e : root.entries) where.record(e.key, e.keyAt);
 
   if (const YamlValue* v = root.find("image")) applyImage(*v, scene, where);
   if (const YamlValue* v = root.find("camera")) applyCamera(*v, scene.camera, where);

@@ -110,8 +110,11 @@ Mesh readMeshFile(const std::string& kind, const YamlValue& v, const std::string
   try {
     return kind == "obj" ? loadObj(file) : loadGltf(file);
   } catch (const SceneError& e) {
-    // The importer's location is inside the mesh file; say which scene key led there.
-    throw SceneError(e.where(), e.message() + " (mesh file of " + path + " at " + formatLocation(v.at) + ")");
+    // An error with a line inside the mesh file is reported there, saying which scene key led
+    // there; one about the file as a whole (no triangles, not parsable) at the scene's key.
+    if (e.where().line > 0)
+      throw SceneError(e.where(), e.message() + " (mesh file of " + path + " at " + formatLocation(v.at) + ")");
+    throw SceneError(v.at, path + ": " + file + ": " + e.message());
   }
 }
 

@@ -12,7 +12,7 @@ namespace shadowref {
 
 // Hard limits on the image: beyond them the buffers cannot sensibly be allocated.
 inline constexpr int kMaxImageSide = 16384;
-inline constexpr long long kMaxImagePixels = 1LL << 28;
+inline constexpr long long kMaxImagePixels = 1LL << 26;  // 8192 x 8192: ~2.5 GB with every buffer
 
 void applyImage(const YamlValue& map, Scene& scene, Provenance& where);
 void applyCamera(const YamlValue& map, Camera& camera, Provenance& where);
