@@ -2,12 +2,15 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
 
 #include "image/image_writer.h"
+#include "image/stencil_view.h"
+#include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/shadow_method.h"
 
@@ -33,10 +36,7 @@ class PixelHistoryPrinter final : public FragmentObserver {
   const std::vector<std::string>& lines() const { return lines_; }
 
  private:
-  std::string describeTag(uint32_t tag) const {
-    if (tag < instances_.size()) return "object '" + instances_[tag].path + "'";
-    return "tag " + std::to_string(tag);
-  }
+  std::string describeTag(uint32_t tag) const { return describeDrawTag(tag, instances_); }
   const std::vector<Instance>& instances_;
   std::vector<std::string> lines_;
 };
@@ -47,10 +47,43 @@ bool parsePixel(const std::string& text, int& x, int& y) {
   return bool(in >> x >> comma >> y) && comma == ',' && in.peek() == EOF;
 }
 
-std::string passPath(const std::string& output, const std::string& pass) {
+// "out/room.png" + "pass-01-ambient" -> "out/room.pass-01-ambient.png"
+std::string siblingPath(const std::string& output, const std::string& suffix) {
   std::filesystem::path p(output);
-  const std::string stem = p.stem().string();
-  return (p.parent_path() / (stem + ".pass-" + pass + ".png")).string();
+  return (p.parent_path() / (p.stem().string() + "." + suffix + ".png")).string();
+}
+
+bool parseInts(const std::string& text, std::vector<int>& values, size_t count) {
+  values.clear();
+  std::istringstream in(text);
+  for (size_t i = 0; i < count; ++i) {
+    int v = 0;
+    if (!(in >> v)) return false;
+    values.push_back(v);
+    if (i + 1 < count && in.get() != ',') return false;
+  }
+  return in.peek() == EOF;
+}
+
+bool wants(const std::vector<std::string>& dumps, const char* what) {
+  return std::find(dumps.begin(), dumps.end(), what) != dumps.end();
+}
+
+// The EXR extras of --dump stencil: with several lights, one stencil channel per light.
+ExrExtras stencilExtras(const FrameResult& frame) {
+  ExrExtras extras;
+  if (frame.stencilPerLight.size() < 2) return extras;
+  for (size_t i = 0; i < frame.stencilPerLight.size(); ++i)
+    extras.channels.push_back(NamedChannel::stencilChannel("stencil." + frame.stencilLightNames[i], frame.stencilPerLight[i]));
+  return extras;
+}
+
+void writeOutput(const FrameResult& frame, const std::string& out, const ExrExtras& extras) {
+  ensureParentDirectory(out);
+  std::string ext = std::filesystem::path(out).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".exr") writeExr(frame.framebuffer, out, extras);
+  else writeImage(frame.framebuffer, out);
 }
 
 void printStats(const FrameResult& frame) {
@@ -80,8 +113,16 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
       ->check(CLI::Range(0, 256));
   render->add_flag("--quiet", args.quiet, "Print nothing but errors");
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
-  render->add_option("--dump", args.dumps, "Teaching dumps: 'passes' writes one image per pass")
-      ->check(CLI::IsMember({"passes"}));
+  render->add_option("--dump", args.dumps,
+                     "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (per light: false-colour "
+                     "PNG with legend, and stencil.L<i> EXR channels), 'depth' (grey PNG)")
+      ->check(CLI::IsMember({"passes", "stencil", "depth"}));
+  render->add_option("--dump-region", args.dumpRegion, "x,y,w,h: print the stencil counts of that region per light "
+                                                       "(row 0 is the bottom)");
+  render->add_option("--view", args.view,
+                     "Draw the shadow volumes over the frame: 'volumes' (front faces red, back faces blue, 003) or "
+                     "'volumes-overlay' (translucent red, 004)")
+      ->check(CLI::IsMember({"volumes", "volumes-overlay"}));
   render->add_option("--pixel-history", args.pixelHistory, "x,y: print every fragment that touched that pixel");
 }
 
@@ -118,23 +159,55 @@ int runRender(const RenderArgs& args) {
     }
     options.observer = &history;
   }
-  const bool dumpPasses = std::find(args.dumps.begin(), args.dumps.end(), "passes") != args.dumps.end();
+  const bool dumpPasses = wants(args.dumps, "passes");
+  std::vector<int> region;
+  if (!args.dumpRegion.empty() && (!parseInts(args.dumpRegion, region, 4) || region[2] <= 0 || region[3] <= 0)) {
+    std::cerr << "--dump-region: expected x,y,w,h with w, h > 0, got '" << args.dumpRegion << "'\n";
+    return kBadInput;
+  }
+  options.keepStencil = wants(args.dumps, "stencil") || !region.empty();
+  if (args.view == "volumes") options.volumeView = VolumeViewMode::FrontBack;
+  if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
   std::vector<std::string> passFiles;
   try {
     if (dumpPasses) {
       options.onPass = [&](const std::string& pass, const Framebuffer& fb) {
         if (!fb.hasColor()) return;
-        const std::string path = passPath(outputs.front(), pass);
+        const std::string path = siblingPath(outputs.front(), "pass-" + pass);
         ensureParentDirectory(path);
         writePng(fb, path);
         passFiles.push_back(path);
       };
     }
     const FrameResult frame = renderFrame(*scene, options);
+    const ExrExtras extras = stencilExtras(frame);
     for (const std::string& out : outputs) {
-      ensureParentDirectory(out);
-      writeImage(frame.framebuffer, out);
+      writeOutput(frame, out, extras);
       if (!args.quiet) std::cerr << "wrote " << out << '\n';
+    }
+    if (wants(args.dumps, "stencil")) {
+      StencilViewOptions view;
+      view.signedCounts = true;  // wrapping ops store -1 as 255
+      for (size_t i = 0; i < frame.stencilPerLight.size(); ++i) {
+        const std::string path = siblingPath(outputs.front(), "stencil-" + frame.stencilLightNames[i]);
+        writeStencilPng(frame.stencilPerLight[i], scene->width, scene->height, path, view);
+        passFiles.push_back(path);
+      }
+      if (frame.stencilPerLight.empty() && !args.quiet)
+        std::cerr << "--dump stencil: this method uses no stencil buffer\n";
+    }
+    if (wants(args.dumps, "depth") && frame.framebuffer.hasDepth()) {
+      std::vector<float> depth(frame.framebuffer.depthCodes().size());
+      for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(frame.framebuffer.depthCodec().decode(frame.framebuffer.depthCodes()[i]));
+      const std::string path = siblingPath(outputs.front(), "depth");
+      writeGreyPng(depth, scene->width, scene->height, path, 0.0f, 1.0f);
+      passFiles.push_back(path);
+    }
+    if (!region.empty()) {
+      for (size_t i = 0; i < frame.stencilPerLight.size(); ++i)
+        std::cout << "light " << frame.stencilLightNames[i] << ":\n"
+                  << stencilGrid(frame.stencilPerLight[i], scene->width, scene->height, region[0], region[1], region[2],
+                                 region[3], true);
     }
     if (!args.quiet)
       for (const std::string& p : passFiles) std::cerr << "wrote " << p << '\n';

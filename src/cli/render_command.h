@@ -19,7 +19,9 @@ struct RenderArgs {
   int threads = 0;                   // 0: all cores
   bool quiet = false;
   bool stats = false;
-  std::vector<std::string> dumps;    // passes
+  std::vector<std::string> dumps;    // passes, stencil, depth
+  std::string dumpRegion;            // "x,y,w,h": stencil counts of that region as a grid
+  std::string view;                  // volumes, volumes-overlay
   std::string pixelHistory;          // "x,y"
 };
 
