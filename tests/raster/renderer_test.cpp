@@ -1,0 +1,293 @@
+// The draw call as a whole: scissor, the canonical vertex rotation that makes equal triangles give
+// bit-equal depths (the shadow-volume front cap, SPEC.md §3 step 2), determinism, pixel history.
+#include <cstring>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "raster/clear.h"
+#include "raster/projection.h"
+#include "raster/renderer.h"
+#include "raster/vertex_stage.h"
+#include "support/raster_harness.h"
+
+using namespace shadowref;
+using namespace shadowref::testing;
+
+TEST_CASE("scissor: only pixels inside the scissor box are drawn", "[raster][scissor]") {
+  Framebuffer fb(8, 4);
+  RenderState s = coverageCountingState(fb);
+  s.scissorTest = true;
+  s.scissor = {2, 1, 3, 2};
+  Renderer r(fb);
+  draw(r, s, windowRect(s.viewport, 0, 0, 8, 4));
+  CHECK(stencilPicture(fb) == rows({"........",
+                                    "..111...",
+                                    "..111...",
+                                    "........"}));
+  // A box reaching outside the framebuffer is cut to it.
+  Framebuffer fb2(8, 4);
+  s.scissor = {-2, -1, 4, 3};
+  Renderer r2(fb2);
+  draw(r2, s, windowRect(s.viewport, 0, 0, 8, 4));
+  CHECK(stencilPicture(fb2) == rows({"........",
+                                     "........",
+                                     "11......",
+                                     "11......"}));
+  // Scissor test off: the box is ignored.
+  Framebuffer fb3(8, 4);
+  s.scissorTest = false;
+  Renderer r3(fb3);
+  draw(r3, s, windowRect(s.viewport, 0, 0, 8, 4));
+  CHECK(stencilPicture(fb3) == rows({"11111111", "11111111", "11111111", "11111111"}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Canonical rotation: (a, b, c), (b, c, a), (c, a, b) are the same triangle.
+
+namespace {
+
+struct Triangle {
+  ClipVertex v[3];
+};
+
+// Random world triangles in front of (and some crossing the near plane of) a perspective camera,
+// transformed as the scene pass does (vertex_stage.h). Coordinates are far from dyadic so rounding
+// differences would show.
+std::vector<Triangle> randomCameraTriangles(uint64_t seed, int count) {
+  TestRandom rng(seed);
+  VertexTransform xf;
+  xf.projection = perspective(53.0, 1.0, 0.37, 91.0);
+  xf.modelView = lookAt({0.31, 0.77, 4.13}, {0.05, -0.11, 0.0}, {0.0, 1.0, 0.0});
+  std::vector<Triangle> out;
+  for (int i = 0; i < count; ++i) {
+    const glm::dvec3 centre(rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5), rng.uniform(-2.0, 2.0));
+    Triangle t;
+    for (ClipVertex& v : t.v) {
+      const glm::dvec3 p = centre + glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+      v.position = xf.toClip(glm::dvec4(p, 1.0));
+    }
+    out.push_back(t);
+  }
+  // Two triangles reaching behind the camera (eye at z = 4.13): the near plane cuts them.
+  for (int i = 0; i < 2; ++i) {
+    Triangle t;
+    t.v[0].position = xf.toClip({-0.7 + i * 0.3, -0.4, 1.0, 1.0});
+    t.v[1].position = xf.toClip({0.9, -0.3 + i * 0.2, 0.5, 1.0});
+    t.v[2].position = xf.toClip({0.1, 0.6, 6.0, 1.0});  // behind the eye
+    out.push_back(t);
+  }
+  return out;
+}
+
+std::vector<ClipVertex> rotation(const Triangle& t, int k) {
+  return {t.v[k % 3], t.v[(k + 1) % 3], t.v[(k + 2) % 3]};
+}
+
+}  // namespace
+
+TEST_CASE("canonical rotation: a triangle in any rotation gives bit-identical depth codes", "[raster][rotation]") {
+  const std::vector<Triangle> triangles = randomCameraTriangles(11, 30);
+  for (DepthFormat format : {DepthFormat::Float32, DepthFormat::Unorm24}) {
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      INFO("triangle " << i << (format == DepthFormat::Float32 ? " float32" : " unorm24"));
+      std::vector<uint32_t> depth[3];
+      std::vector<uint8_t> coverage[3];
+      for (int k = 0; k < 3; ++k) {
+        Framebuffer fb(48, 48, format);
+        RenderState s = coverageCountingState(fb);
+        s.depthTest = true;
+        s.depthFunc = CompareFunc::Always;
+        Renderer r(fb);
+        draw(r, s, rotation(triangles[i], k));
+        depth[k] = fb.depthCodes();
+        coverage[k] = fb.stencil();
+      }
+      CHECK(depth[1] == depth[0]);
+      CHECK(depth[2] == depth[0]);
+      CHECK(coverage[1] == coverage[0]);
+      CHECK(coverage[2] == coverage[0]);
+    }
+  }
+}
+
+TEST_CASE("front-cap property: redrawing a triangle in another rotation fails LESS and passes EQUAL everywhere",
+          "[raster][rotation]") {
+  const std::vector<Triangle> triangles = randomCameraTriangles(23, 30);
+  int pixelsChecked = 0;
+  for (DepthFormat format : {DepthFormat::Float32, DepthFormat::Unorm24}) {
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      INFO("triangle " << i << (format == DepthFormat::Float32 ? " float32" : " unorm24"));
+      Framebuffer fb(48, 48, format);
+      RenderState scene = coverageCountingState(fb);  // the scene pass: depth LESS, written
+      scene.depthTest = true;
+      scene.depthFunc = CompareFunc::Less;
+      Renderer r(fb);
+      draw(r, scene, rotation(triangles[i], 0));
+      const std::vector<uint8_t> covered = fb.stencil();
+      for (uint8_t c : covered) pixelsChecked += c;
+
+      RenderState volume = scene;  // the volume pass: depth not written, count where depth passes
+      volume.depthWrite = false;
+      for (StencilFaceState& f : volume.stencil) f.dpfail = StencilOp::Keep;
+      for (int k = 1; k < 3; ++k) {
+        clearStencil(fb, volume, 0);
+        volume.depthFunc = CompareFunc::Less;
+        draw(r, volume, rotation(triangles[i], k));
+        CHECK(stencilPicture(fb) == picture(48, 48, [](int, int) { return '.'; }));
+        clearStencil(fb, volume, 0);
+        volume.depthFunc = CompareFunc::Equal;
+        draw(r, volume, rotation(triangles[i], k));
+        CHECK(fb.stencil() == covered);
+      }
+    }
+  }
+  CHECK(pixelsChecked > 1000);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+// A frame of random draws: random triangles (some crossing the near plane), colours, and state.
+void renderRandomFrame(Framebuffer& fb, uint64_t seed) {
+  TestRandom rng(seed);
+  Renderer r(fb);
+  RenderState s = fullViewportState(fb);
+  clearColor(fb, s, {0.1f, 0.2f, 0.3f, 0.4f});
+  clearDepth(fb, s, 1.0);
+  clearStencil(fb, s, 0);
+  const glm::dmat4 p = perspective(70.0, 1.25, 0.5, 50.0);
+  const ColorVaryingShader shader;
+  for (int d = 0; d < 40; ++d) {
+    s.depthTest = rng.below(4) != 0;
+    s.depthFunc = CompareFunc(rng.below(8));
+    s.depthWrite = rng.below(3) != 0;
+    s.stencilTest = rng.below(2) != 0;
+    for (StencilFaceState& f : s.stencil) {
+      f.func = CompareFunc(rng.below(8));
+      f.ref = rng.below(256);
+      f.sfail = StencilOp(rng.below(8));
+      f.dpfail = StencilOp(rng.below(8));
+      f.dppass = StencilOp(rng.below(8));
+    }
+    s.cull = CullMode(rng.below(3));
+    s.blend = {rng.below(2) != 0, BlendFactor(rng.below(10)), BlendFactor(rng.below(10))};
+    s.polygonOffset = {rng.below(4) == 0, rng.uniform(-2, 2), rng.uniform(-4, 4)};
+    std::vector<ClipVertex> v(3 * 10);
+    for (ClipVertex& cv : v) {
+      cv.position = p * glm::dvec4(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(-12, 1), 1.0);
+      for (int k = 0; k < 4; ++k) cv.varyings[k] = rng.uniform(-0.2, 1.2);
+    }
+    draw(r, s, v, &shader);
+  }
+}
+
+template <class T>
+bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("determinism: the same random frame rendered twice is byte-identical in every buffer",
+          "[raster][determinism]") {
+  for (uint64_t seed : {5u, 6u, 7u}) {
+    INFO("seed " << seed);
+    Framebuffer a(96, 64), b(96, 64);
+    renderRandomFrame(a, seed);
+    renderRandomFrame(b, seed);
+    CHECK(sameBytes(a.color(), b.color()));
+    CHECK(sameBytes(a.depthCodes(), b.depthCodes()));
+    CHECK(sameBytes(a.stencil(), b.stencil()));
+    // Not a vacuous comparison: a different seed gives a different frame.
+    Framebuffer c(96, 64);
+    renderRandomFrame(c, seed + 100);
+    CHECK_FALSE(sameBytes(a.color(), c.color()));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pixel history (FragmentObserver through Renderer::watchPixel).
+
+namespace {
+
+class Recorder final : public FragmentObserver {
+ public:
+  void onFragment(const FragmentEvent& e) override { events.push_back(e); }
+  std::vector<FragmentEvent> events;
+};
+
+}  // namespace
+
+TEST_CASE("pixel history records each fragment at the watched pixel with tests and stencil before/after",
+          "[raster][history]") {
+  Framebuffer fb(16, 16);
+  RenderState s = fullViewportState(fb);
+  s.depthTest = true;
+  s.depthFunc = CompareFunc::Less;
+  s.stencilTest = true;
+  for (StencilFaceState& f : s.stencil) f = {CompareFunc::Always, 7, 0xFF, 0xFF, StencilOp::Zero, StencilOp::Replace, StencilOp::Incr};
+  Renderer r(fb);
+  Recorder history;
+  r.watchPixel(8, 8, &history);
+  const Viewport& vp = s.viewport;
+
+  // 0: a rectangle at depth 0.5: both tests pass, INCR 0 -> 1, depth 1 -> 0.5.
+  draw(r, s, windowRect(vp, 0, 0, 16, 16, 0.5), nullptr, 10);
+  // 1: a triangle behind it (0.75): the depth test fails, dpfail REPLACE 1 -> 7.
+  draw(r, s, windowTriangles(vp, {{2, 2, 0.75}, {15, 3, 0.75}, {6, 14, 0.75}}), nullptr, 11);
+  // 2: a clockwise (back-facing) triangle in front (0.25), stencil EQUAL 7: passes, INCR 7 -> 8.
+  RenderState equal7 = s;
+  for (StencilFaceState& f : equal7.stencil) f.func = CompareFunc::Equal;
+  draw(r, equal7, windowTriangles(vp, {{1, 1, 0.25}, {9, 15, 0.25}, {15, 1, 0.25}}), nullptr, 12);
+  // 3: a triangle that misses the pixel: no event.
+  draw(r, s, windowTriangles(vp, {{0, 0, 0.1}, {4, 0, 0.1}, {0, 4, 0.1}}), nullptr, 13);
+  // 4: a triangle whose stencil test fails (NEVER): sfail ZERO 8 -> 0, depth not tested.
+  RenderState never = s;
+  for (StencilFaceState& f : never.stencil) f.func = CompareFunc::Never;
+  draw(r, never, windowTriangles(vp, {{3, 3, 0.1}, {14, 6, 0.1}, {7, 13, 0.1}}), nullptr, 14);
+  r.watchPixel(-1, -1, nullptr);
+  draw(r, s, windowRect(vp, 0, 0, 16, 16, 0.0), nullptr, 15);  // not watched any more
+
+  REQUIRE(history.events.size() == 4);
+  const FragmentEvent* e = history.events.data();
+  CHECK(e[0].drawIndex == 0);
+  CHECK(e[0].drawTag == 10);
+  CHECK(e[0].x == 8);
+  CHECK(e[0].y == 8);
+  CHECK(e[0].facing == FrontFacing);
+  CHECK(e[0].stencilPassed);
+  CHECK(e[0].depthPassed);
+  CHECK(e[0].depth == 0.5);
+  CHECK(e[0].storedDepth == 1.0);
+  CHECK(int(e[0].stencilBefore) == 0);
+  CHECK(int(e[0].stencilAfter) == 1);
+
+  CHECK(e[1].drawIndex == 1);
+  CHECK(e[1].drawTag == 11);
+  CHECK(e[1].stencilPassed);
+  CHECK_FALSE(e[1].depthPassed);
+  CHECK(e[1].depth == 0.75);
+  CHECK(e[1].storedDepth == 0.5);
+  CHECK(int(e[1].stencilBefore) == 1);
+  CHECK(int(e[1].stencilAfter) == 7);
+
+  CHECK(e[2].drawIndex == 2);
+  CHECK(e[2].drawTag == 12);
+  CHECK(e[2].facing == BackFacing);
+  CHECK(e[2].stencilPassed);
+  CHECK(e[2].depthPassed);
+  CHECK(e[2].storedDepth == 0.5);
+  CHECK(int(e[2].stencilBefore) == 7);
+  CHECK(int(e[2].stencilAfter) == 8);
+
+  CHECK(e[3].drawIndex == 4);
+  CHECK(e[3].drawTag == 14);
+  CHECK_FALSE(e[3].stencilPassed);
+  CHECK(e[3].storedDepth == 0.25);
+  CHECK(int(e[3].stencilBefore) == 8);
+  CHECK(int(e[3].stencilAfter) == 0);
+
+  CHECK(fb.stencilAt(8, 8) == 1);  // the unwatched draw 5 still ran: INCR 0 -> 1
+}
