@@ -1,0 +1,79 @@
+// The shadow-map lookup (002 §3.1, §5.1.2): projective (s, t, r, q), nearest texel, clamp to edge,
+// r/q compared against the stored depth, 1 on pass and the compare-fail value (0.4) on failure.
+#include <catch2/catch.hpp>
+
+#include "raster/depth_compare_sampler.h"
+
+using namespace shadowref;
+
+namespace {
+
+// 4x4 texels of depth 0.5, except (1, 2) = 0.2, (2, 3) = 0.1 and (3, 3) = 0.9.
+DepthTexture texture() {
+  DepthTexture t;
+  t.width = t.height = 4;
+  t.depth.assign(16, 0.5f);
+  t.depth[2 * 4 + 1] = 0.2f;
+  t.depth[3 * 4 + 2] = 0.1f;
+  t.depth[3 * 4 + 3] = 0.9f;
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("nearest texel is floor(s * size): 1 when r <= D, else the fail value 0.4", "[raster][sampler]") {
+  const DepthTexture tex = texture();
+  const DepthCompareSampler sm{&tex};
+  // s = 0.3, t = 0.6 -> texel (floor 1.2, floor 2.4) = (1, 2), D = 0.2
+  CHECK(sm.sample({0.3, 0.6, 0.1, 1.0}) == 1.0);
+  CHECK(sm.sample({0.3, 0.6, 0.2, 1.0}) == 1.0);  // LEQUAL: equal passes
+  CHECK(sm.sample({0.3, 0.6, 0.3, 1.0}) == 0.4);
+  // s = 0.24 -> floor(0.96) = 0: texel (0, 2), D = 0.5
+  CHECK(sm.sample({0.24, 0.6, 0.3, 1.0}) == 1.0);
+  // s = 0.25 exactly -> texel 1
+  CHECK(sm.sample({0.25, 0.6, 0.3, 1.0}) == 0.4);
+}
+
+TEST_CASE("coordinates outside [0, 1] clamp to the edge texels", "[raster][sampler]") {
+  const DepthTexture tex = texture();
+  const DepthCompareSampler sm{&tex};
+  CHECK(sm.sample({1.7, 1.2, 0.8, 1.0}) == 1.0);   // texel (3, 3), D = 0.9
+  CHECK(sm.sample({1.0, 1.0, 0.95, 1.0}) == 0.4);  // s = t = 1 -> texel 3, not 4
+  CHECK(sm.sample({-0.5, 0.6, 0.3, 1.0}) == 1.0);  // texel (0, 2), D = 0.5
+  CHECK(sm.sample({0.3, -3.0, 0.6, 1.0}) == 0.4);  // texel (1, 0), D = 0.5
+  // r is clamped to [0, 1] too: r = 1.5 -> 1 > 0.9 fails; r = -1 -> 0 passes.
+  CHECK(sm.sample({1.7, 1.2, 1.5, 1.0}) == 0.4);
+  CHECK(sm.sample({0.3, 0.6, -1.0, 1.0}) == 1.0);
+}
+
+TEST_CASE("the lookup divides s, t and r by q", "[raster][sampler]") {
+  const DepthTexture tex = texture();
+  const DepthCompareSampler sm{&tex};
+  // (0.6, 1.2, 0.3, 2) -> (0.3, 0.6, 0.15): texel (1, 2), D = 0.2, passes. Undivided it would be
+  // texel (2, 3), D = 0.1 with r = 0.3, a failure.
+  CHECK(sm.sample({0.6, 1.2, 0.3, 2.0}) == 1.0);
+  CHECK(sm.sample({0.6, 1.2, 0.3, 1.0}) == 0.4);
+}
+
+TEST_CASE("compare func and fail value are settings", "[raster][sampler]") {
+  const DepthTexture tex = texture();
+  DepthCompareSampler sm{&tex, CompareFunc::Greater, 0.0};
+  CHECK(sm.sample({0.3, 0.6, 0.3, 1.0}) == 1.0);  // 0.3 > 0.2
+  CHECK(sm.sample({0.3, 0.6, 0.1, 1.0}) == 0.0);
+}
+
+TEST_CASE("PCF 3x3 averages the nine comparisons around the nearest texel", "[raster][sampler]") {
+  const DepthTexture tex = texture();
+  const DepthCompareSampler sm{&tex};
+  // Around (1, 2) with r = 0.3: texels x 0..2, y 1..3 hold 0.5 except (1, 2) = 0.2 and (2, 3) = 0.1:
+  // 7 pass, 2 fail -> (7 + 2 * 0.4) / 9.
+  CHECK(sm.samplePcf({0.3, 0.6, 0.3, 1.0}, 3) == Approx(7.8 / 9.0).epsilon(1e-15));
+  // At the corner (3, 3) the neighbours clamp to the edge: columns 2, 3, 3 and rows 2, 3, 3;
+  // (2, 3) = 0.1 appears twice -> (7 + 2 * 0.4) / 9.
+  CHECK(sm.samplePcf({0.9, 0.9, 0.3, 1.0}, 3) == Approx(7.8 / 9.0).epsilon(1e-15));
+  // All pass and all fail.
+  CHECK(sm.samplePcf({0.6, 0.3, 0.05, 1.0}, 3) == 1.0);
+  CHECK(sm.samplePcf({0.6, 0.3, 0.95, 1.0}, 3) == Approx(0.4).epsilon(1e-15));
+  // k = 1 is the plain lookup.
+  CHECK(sm.samplePcf({0.3, 0.6, 0.3, 1.0}, 1) == 0.4);
+}
