@@ -177,3 +177,17 @@ TEST_CASE("oracle: with the eye inside shadow volumes, z-fail exceeds z-pass by 
     CHECK(compared > 10000);
   }
 }
+
+TEST_CASE("oracle: the result does not depend on the thread count", "[oracle]") {
+  const Scene scene = boxOverFloor();
+  const Light light = pointLight({0.3, 5.0, -0.2});
+  OracleOptions one, three;
+  one.threads = 1;
+  three.threads = 3;
+  const OracleImage a = castOracle(scene, light, one), b = castOracle(scene, light, three);
+  CHECK(a.zpass == b.zpass);
+  CHECK(a.zfail == b.zfail);
+  CHECK(a.lit == b.lit);
+  CHECK(a.nearEdge == b.nearEdge);
+  CHECK(a.hitPoint == b.hitPoint);
+}
