@@ -256,3 +256,53 @@ TEST_CASE("clipPolygon cuts a shared edge at the same point from both of its tri
     for (const glm::dvec4& y : b) shared += x == y;
   CHECK(shared == 1);
 }
+
+TEST_CASE("watertight through the near plane: a jittered floor grid reaching behind the eye", "[raster][clip][watertight]") {
+  // The floor y = -1, x in [-60, 60], z in [-50, 5] (the eye at the origin looks down -z), split into
+  // jittered cells whose triangles cross the near plane and w = 0. With a 90 degree frustum
+  // (+-0.5 at near 0.5), clip x = x, y = y, w = -z. Its far edge z = -50 projects to
+  // y_ndc = -1/50, window y = 0.98 * 32 = 31.36 on a 64x64 viewport; its sides stay outside the
+  // viewport (|x_ndc| >= 60/50); the near part projects below it. So rows 0..30 are covered once.
+  const int nx = 16, nz = 14;
+  for (int projection = 0; projection < 2; ++projection) {
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+      INFO((projection == 0 ? "glFrustum" : "P_inf") << ", seed " << seed);
+      const glm::dmat4 p = projection == 0 ? frustum(-0.5, 0.5, -0.5, 0.5, 0.5, 100)
+                                          : infiniteFrustum(-0.5, 0.5, -0.5, 0.5, 0.5);
+      TestRandom rng(seed);
+      std::vector<ClipVertex> vertices;
+      for (int j = 0; j <= nz; ++j)
+        for (int i = 0; i <= nx; ++i) {
+          double x = -60.0 + 120.0 * i / nx, z = -50.0 + 55.0 * j / nz;
+          if (i > 0 && i < nx) x += rng.uniform(-2.5, 2.5);  // boundary nodes stay on their lines
+          if (j > 0 && j < nz) z += rng.uniform(-1.2, 1.2);
+          ClipVertex v;
+          v.position = p * glm::dvec4(x, -1.0, z, 1.0);
+          vertices.push_back(v);
+        }
+      std::vector<uint32_t> indices;
+      auto at = [&](int i, int j) { return uint32_t(j * (nx + 1) + i); };
+      for (int j = 0; j < nz; ++j)
+        for (int i = 0; i < nx; ++i) {
+          const bool diagonal = rng.below(2) == 0;
+          const uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+          const bool flip = rng.below(2) == 0;  // both windings in one mesh
+          if (diagonal) {
+            indices.insert(indices.end(), {a, flip ? c : b, flip ? b : c, a, flip ? d : c, flip ? c : d});
+          } else {
+            indices.insert(indices.end(), {a, flip ? d : b, flip ? b : d, b, flip ? d : c, flip ? c : d});
+          }
+        }
+      Framebuffer fb(64, 64);
+      RenderState s = coverageCountingState(fb);
+      s.clipFar = projection == 0;
+      Renderer r(fb);
+      DrawCall call;
+      call.state = &s;
+      call.vertices = vertices;
+      call.indices = indices;
+      r.draw(call);
+      CHECK(stencilPicture(fb) == picture(64, 64, [](int, int y) { return y <= 30 ? '1' : '.'; }));
+    }
+  }
+}
