@@ -115,8 +115,9 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
   render->add_option("--dump", args.dumps,
                      "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (per light: false-colour "
-                     "PNG with legend, and stencil.L<i> EXR channels), 'depth' (grey PNG)")
-      ->check(CLI::IsMember({"passes", "stencil", "depth"}));
+                     "PNG with legend, and stencil.L<i> EXR channels), 'depth' (grey PNG), 'shadowmap' (per light: grey PNG "
+                     "and EXR with the Z channel)")
+      ->check(CLI::IsMember({"passes", "stencil", "depth", "shadowmap"}));
   render->add_option("--dump-region", args.dumpRegion, "x,y,w,h: print the stencil counts of that region per light "
                                                        "(row 0 is the bottom)");
   render->add_option("--view", args.view,
@@ -166,6 +167,7 @@ int runRender(const RenderArgs& args) {
     return kBadInput;
   }
   options.keepStencil = wants(args.dumps, "stencil") || !region.empty();
+  options.keepShadowMaps = wants(args.dumps, "shadowmap");
   if (args.view == "volumes") options.volumeView = VolumeViewMode::FrontBack;
   if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
   std::vector<std::string> passFiles;
@@ -203,6 +205,20 @@ int runRender(const RenderArgs& args) {
       writeGreyPng(depth, scene->width, scene->height, path, 0.0f, 1.0f);
       passFiles.push_back(path);
     }
+    for (size_t i = 0; i < frame.shadowMaps.size(); ++i) {
+      const DepthTexture& map = frame.shadowMaps[i];
+      const std::string png = siblingPath(outputs.front(), "shadowmap-" + frame.shadowMapNames[i]);
+      writeGreyPng(map.depth, map.width, map.height, png, 0.0f, 1.0f);
+      Framebuffer holder(map.width, map.height);
+      ExrExtras z;
+      z.channels.push_back(NamedChannel::floatChannel("Z", map.depth));
+      std::string exr = png.substr(0, png.size() - 4) + ".exr";
+      writeExr(holder, exr, z);
+      passFiles.push_back(png);
+      passFiles.push_back(exr);
+    }
+    if (wants(args.dumps, "shadowmap") && frame.shadowMaps.empty() && !args.quiet)
+      std::cerr << "--dump shadowmap: this method renders no shadow map\n";
     if (!region.empty()) {
       for (size_t i = 0; i < frame.stencilPerLight.size(); ++i)
         std::cout << "light " << frame.stencilLightNames[i] << ":\n"

@@ -8,6 +8,7 @@
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
 #include "shadow/shadow_method.h"
+#include "shadow/shadow_map_renderer.h"
 #include "shadow/volume_renderer.h"
 
 namespace shadowref {
@@ -53,7 +54,7 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
 
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
   const ShadowMethod method = options.method.value_or(scene.shadow.method);
-  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}};
+  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}};
   Renderer renderer(result.framebuffer);
   if (options.observer) renderer.watchPixel(options.watchX, options.watchY, options.observer);
   switch (method) {
@@ -61,10 +62,12 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
     case ShadowMethod::ZPass:
     case ShadowMethod::ZFail:
     case ShadowMethod::Auto: renderShadowVolumes(scene, method, options, result, renderer); break;
+    case ShadowMethod::ShadowMap:
+    case ShadowMethod::Trapezoidal: renderShadowMaps(scene, method, options, result, renderer); break;
     default:
       throw std::runtime_error(std::string("shadow method '") + name(method) + "' is not available in this build");
   }
-  result.stats = renderer.stats();
+  result.stats += renderer.stats();
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "raster/depth_compare_sampler.h"
 #include "raster/fragment_observer.h"
 #include "raster/framebuffer.h"
 #include "raster/raster_stats.h"
@@ -29,6 +30,8 @@ struct FrameOptions {
   std::function<void(const std::string& pass, const Framebuffer&)> onPass;
   // Keep a copy of the stencil buffer after each light's volume pass (--dump stencil).
   bool keepStencil = false;
+  // Keep the shadow maps of the first frame (--dump shadowmap).
+  bool keepShadowMaps = false;
   VolumeViewMode volumeView = VolumeViewMode::None;
 };
 
@@ -46,6 +49,9 @@ struct FrameResult {
   // light's name ("L0", "L1", ... in the order of the expanded light list).
   std::vector<std::vector<uint8_t>> stencilPerLight;
   std::vector<std::string> stencilLightNames;
+  // With FrameOptions::keepShadowMaps: each light's depth map(s), named "L0" or "L0.face3".
+  std::vector<DepthTexture> shadowMaps;
+  std::vector<std::string> shadowMapNames;
 };
 
 // Throws std::runtime_error for a method this build cannot render.
