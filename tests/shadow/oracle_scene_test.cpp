@@ -8,6 +8,7 @@
 #include "scene/primitives.h"
 #include "scene/scene.h"
 #include "support/oracle/oracle.h"
+#include "support/oracle/stencil_comparison.h"
 
 using namespace shadowref;
 using namespace shadowref::oracle;
@@ -190,4 +191,21 @@ TEST_CASE("oracle: the result does not depend on the thread count", "[oracle]") 
   CHECK(a.lit == b.lit);
   CHECK(a.nearEdge == b.nearEdge);
   CHECK(a.hitPoint == b.hitPoint);
+}
+
+TEST_CASE("oracle: a stencil comparison skips edge pixels and compares counts modulo 256", "[oracle]") {
+  OracleImage img;
+  img.width = 3;
+  img.height = 1;
+  img.zpass = {1, -1, 5};
+  img.zfail = {1, 2, 0};
+  img.nearEdge = {0, 0, 1};
+  img.hitInstance = {0, 0, -1};
+  // -1 wrapped by DECR_WRAP is 255; the third pixel is near an edge and never compared.
+  const StencilComparison zpass = compareStencil(img, {1, 255, 0}, CountKind::ZPass);
+  CHECK(zpass.compared == 2);
+  CHECK(zpass.matches());
+  const StencilComparison zfail = compareStencil(img, {1, 255, 0}, CountKind::ZFail);
+  CHECK(zfail.mismatches == 1);
+  CHECK(zfail.report == "1,0: stencil 255, oracle 2 (hit instance 0)\n");
 }

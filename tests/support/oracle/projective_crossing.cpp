@@ -82,11 +82,11 @@ Crossing crossSegment(const ProjectiveTriangle& t, const ProjectiveSegment& s) {
   const double piQ = glm::dot(t.plane, s.q);
   if (piP == 0.0) return c;                        // starts on the plane: no transversal crossing
   if (piQ != 0.0 && (piP > 0.0) == (piQ > 0.0)) return c;  // both ends on one side
-  // c0, c1, c2 must all have the sign opposite to c4 = π(P).
+  // c0, c1, c2 — the side products det[Va Vb P Q] of the three edges a -> b — must all have the
+  // sign opposite to c4 = π(P).
   const double want = piP > 0.0 ? -1.0 : 1.0;
-  for (int i = 0; i < 3; ++i) {
-    // c_i is the side product of the edge opposite vertex i, i.e. edge (i+1 -> i+2).
-    if (edgeSign(t, (i + 1) % 3, s.line) != want) return c;
+  for (int edge = 0; edge < 3; ++edge) {
+    if (edgeSign(t, edge, s.line) != want) return c;
   }
   c.hit = true;
   c.entering = piP < 0.0;

@@ -1,0 +1,28 @@
+// Comparing a rasterized stencil buffer with the oracle's counts (issue 4: "the rasterized stencil
+// must equal that count on every pixel that is not within one pixel of a volume or geometry edge").
+// With wrapping ops (INCR_WRAP / DECR_WRAP) the 8-bit stencil holds the count modulo 256.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "support/oracle/oracle.h"
+
+namespace shadowref::oracle {
+
+enum class CountKind : uint8_t { ZPass, ZFail };
+
+struct StencilComparison {
+  size_t compared = 0;    // pixels not near an edge
+  size_t mismatches = 0;
+  std::string report;     // the first few mismatches: "x,y: stencil s, oracle c (hit instance i)"
+  bool matches() const { return mismatches == 0; }
+};
+
+// `stencil`: width * height values, row 0 at the bottom (Framebuffer::stencil()).
+StencilComparison compareStencil(const OracleImage& oracle, const std::vector<uint8_t>& stencil, CountKind kind,
+                                 size_t reportLimit = 10);
+
+}  // namespace shadowref::oracle
