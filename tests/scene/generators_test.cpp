@@ -264,3 +264,13 @@ TEST_CASE("generators add to a scene without disturbing what is there", "[mesh]"
   // Material indices of the room still name the room's materials.
   CHECK(scene.materials[scene.roots[0].children[0].material].name == "floor");
 }
+
+TEST_CASE("the lantern stays a closed genus-3 shell at every grid resolution the loader allows", "[mesh]") {
+  for (auto [slices, stacks] : {std::pair{18, 16}, std::pair{24, 20}, std::pair{54, 32}, std::pair{101, 64}}) {
+    INFO(slices << " x " << stacks);
+    PumpkinShape shape;
+    shape.slices = slices;
+    shape.stacks = stacks;
+    shadowref::testing::requireClosedOutward(makeHollowPumpkin(shape, 0.04), /*genus=*/3);
+  }
+}
