@@ -22,13 +22,29 @@ double distance(Plane plane, const glm::dvec4& p, double g) {
   return 0.0;
 }
 
+// Puts an intersection exactly on its plane. Interpolation alone loses the plane's own coordinate
+// when the outside end is far beyond it: x = 3e20 + 0.75 (-1e20 - 3e20) cancels to 0, not to the
+// guard band -G w = -32768, and half the viewport goes missing.
+void placeOnPlane(Plane plane, glm::dvec4& p, double g) {
+  switch (plane) {
+    case Plane::Near: p.z = -p.w; break;
+    case Plane::Far: p.z = p.w; break;
+    case Plane::Left: p.x = -g * p.w; break;
+    case Plane::Right: p.x = g * p.w; break;
+    case Plane::Bottom: p.y = -g * p.w; break;
+    case Plane::Top: p.y = g * p.w; break;
+    case Plane::MinW: p.w = kMinClipW; break;
+  }
+}
+
 // The point where the edge from `inside` to `outside` crosses the plane. Always called with the
 // inside end first, so both triangles sharing an edge compute the same point.
-ClipVertex intersect(const ClipVertex& inside, double dIn, const ClipVertex& outside, double dOut,
-                     int varyingCount) {
+ClipVertex intersect(Plane plane, double g, const ClipVertex& inside, double dIn, const ClipVertex& outside,
+                     double dOut, int varyingCount) {
   const double t = dIn / (dIn - dOut);
   ClipVertex r;
   r.position = inside.position + t * (outside.position - inside.position);
+  placeOnPlane(plane, r.position, g);
   for (int i = 0; i < varyingCount; ++i)
     r.varyings[i] = inside.varyings[i] + t * (outside.varyings[i] - inside.varyings[i]);
   return r;
@@ -46,8 +62,8 @@ void clipAgainst(Plane plane, double g, const std::vector<ClipVertex>& in, int v
     const double db = distance(plane, b.position, g);
     const bool aIn = da >= 0.0, bIn = db >= 0.0;
     if (aIn) out.push_back(a);
-    if (aIn && !bIn) out.push_back(intersect(a, da, b, db, varyingCount));
-    if (!aIn && bIn) out.push_back(intersect(b, db, a, da, varyingCount));
+    if (aIn && !bIn) out.push_back(intersect(plane, g, a, da, b, db, varyingCount));
+    if (!aIn && bIn) out.push_back(intersect(plane, g, b, db, a, da, varyingCount));
   }
 }
 

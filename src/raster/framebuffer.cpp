@@ -12,9 +12,10 @@ constexpr double kUnorm24Max = 16777215.0;  // 2^24 - 1
 }
 
 uint32_t DepthCodec::encode(double z) const {
-  z = std::clamp(z, 0.0, 1.0);
+  // Not std::clamp: it returns -0.0 (and NaN) unchanged, and the bits of -0.0f (0x80000000) would
+  // sort above every positive depth. Negative zero, negatives and NaN all become +0.0.
+  z = z > 0.0 ? std::min(z, 1.0) : 0.0;
   if (format == DepthFormat::Unorm24) return uint32_t(std::nearbyint(z * kUnorm24Max));
-  // +0.0f for z == 0 (never -0.0: the clamp above returns the literal 0.0 for negatives).
   return std::bit_cast<uint32_t>(float(z));
 }
 

@@ -152,9 +152,8 @@ TEST_CASE("triangles entirely behind the eye draw nothing, with or without depth
   CHECK(coveredCount(countCoverage(visible, 16)) > 0);
 }
 
-// Fix: /tmp/raster-fixes/clip-on-plane.patch ([!mayfail] until applied).
 TEST_CASE("triangles with coordinates of 1e20 cover the whole viewport once at the right depth",
-          "[raster][clip][!mayfail]") {
+          "[raster][clip]") {
   // NDC (-1e20, -1e20), (3e20, -1e20), (-1e20, 3e20) contain the viewport; z_ndc 0.25 -> depth 0.625.
   auto tri = [](double w) {
     std::vector<ClipVertex> v(3);

@@ -213,9 +213,9 @@ TEST_CASE("invariant: z-fail = z-pass + (back - front fragments, depth ignored) 
 }
 
 TEST_CASE("invariant: the silhouette volume counts exactly like the per-triangle volumes of every light-facing "
-          "triangle (interior quads cancel), z-pass and z-fail, on every scene", "[volumes-oracle][!mayfail]") {
-  // [!mayfail] while /tmp/volume-fixes/side-quad-diagonal.patch is open: the two quads of an
-  // interior edge are cut along different diagonals, and at pumpkins 200x160 one pixel differs.
+          "triangle (interior quads cancel), z-pass and z-fail, on every scene", "[volumes-oracle]") {
+  // Regression: the two quads of an interior edge used to be cut along different diagonals, and
+  // at pumpkins 200x160 one pixel differed (extrusion.cpp now picks the diagonal by vertex index).
   for (const std::string& file : allSceneFiles()) {
     const Scene scene = sceneForInvariants(file);
     const FrameResult frame = zfailFrame(scene);
