@@ -1,0 +1,131 @@
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+#include "shadow/light_view.h"
+#include "shadow/shadow_lookup.h"
+
+using namespace shadowref;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+
+DepthTexture uniformTexture(int size, float depth) {
+  DepthTexture t;
+  t.width = t.height = size;
+  t.depth.assign(size_t(size) * size_t(size), depth);
+  return t;
+}
+
+Aabb box(const glm::dvec3& lo, const glm::dvec3& hi) {
+  Aabb b;
+  b.add(lo);
+  b.add(hi);
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("shadowCoordinates is T times the homogeneous world position", "[shadowmap]") {
+  // With T = bias alone, world (x, y, z) in [-1,1]^3 gives (0.5x + 0.5, ...).
+  const glm::dvec4 strq = shadowCoordinates(biasMatrix(), {-0.5, 0.5, 0.2});
+  CHECK(strq == glm::dvec4(0.25, 0.75, 0.6, 1.0));
+}
+
+TEST_CASE("shadow lookup: R <= D is lit, R > D gets the compare-fail value 0.4", "[shadowmap]") {
+  DepthTexture map = uniformTexture(2, 0.5f);
+  ShadowLookup lookup;
+  lookup.textureMatrix = biasMatrix();
+  lookup.sampler.texture = &map;
+  CHECK(lookup.sampler.failValue == 0.4);  // 002 §5.1.2 default
+  // (-0.5, -0.5, z): texel (0, 0); r = 0.5 z + 0.5.
+  CHECK(lookup.factor({-0.5, -0.5, 0.0}) == 1.0);   // R = 0.5 = D: lit (LEQUAL)
+  CHECK(lookup.factor({-0.5, -0.5, -0.2}) == 1.0);  // R = 0.4 < D
+  CHECK(lookup.factor({-0.5, -0.5, 0.1}) == 0.4);   // R = 0.55 > D: shadowed
+}
+
+TEST_CASE("constant bias moves R towards the light by the bias, in homogeneous form", "[shadowmap]") {
+  CHECK(withConstantBias({1.0, 2.0, 3.0, 2.0}, 0.25) == glm::dvec4(1.0, 2.0, 2.5, 2.0));
+  DepthTexture map = uniformTexture(2, 0.5f);
+  ShadowLookup lookup;
+  lookup.textureMatrix = biasMatrix();
+  lookup.sampler.texture = &map;
+  lookup.constantBias = 0.1;
+  CHECK(lookup.factor({-0.5, -0.5, 0.1}) == 1.0);  // R = 0.55 - 0.1 = 0.45 <= 0.5
+  CHECK(lookup.factor({-0.5, -0.5, 0.3}) == 0.4);  // R = 0.65 - 0.1 = 0.55 > 0.5
+}
+
+TEST_CASE("PCF 3x3 averages nine comparisons of 1 or the fail value", "[shadowmap]") {
+  // 4x4 map: the left column holds an occluder at depth 0.2, the rest 0.9.
+  DepthTexture map = uniformTexture(4, 0.9f);
+  for (int y = 0; y < 4; ++y) map.depth[size_t(y) * 4] = 0.2f;
+  ShadowLookup lookup;
+  lookup.textureMatrix = biasMatrix();
+  lookup.sampler.texture = &map;
+  lookup.pcf = 3;
+  // Texel (1, 1) centre: s = t = 1.5/4 -> world x = y = 2s - 1 = -0.25; r = 0.5 (z = 0).
+  // Neighbourhood x 0..2: column 0 (3 texels) shadowed, 6 lit: (6 + 3 * 0.4) / 9.
+  CHECK_THAT(lookup.factor({-0.25, -0.25, 0.0}), WithinAbs((6.0 + 3.0 * 0.4) / 9.0, 1e-12));
+  lookup.pcf = 1;
+  CHECK(lookup.factor({-0.25, -0.25, 0.0}) == 1.0);
+  CHECK(lookup.factor({-0.9, -0.25, 0.0}) == 0.4);
+}
+
+TEST_CASE("shadow lookup behind a perspective light (q <= 0) does not shadow", "[shadowmap]") {
+  DepthTexture map = uniformTexture(2, 0.0f);  // everything would be shadowed
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0.0, 5.0, 0.0};
+  spot.direction = {0.0, -1.0, 0.0};
+  ShadowLookup lookup;
+  lookup.textureMatrix = textureMatrix(spotLightView(spot, box({-1.0, 0.0, -1.0}, {1.0, 1.0, 1.0})));
+  lookup.sampler.texture = &map;
+  CHECK(lookup.factor({0.0, 8.0, 0.0}) == 1.0);  // above the light
+  CHECK(lookup.factor({0.0, 0.5, 0.0}) == 0.4);  // in front of it
+}
+
+TEST_CASE("a directional map over a ground plane: the occluder's footprint is shadowed", "[shadowmap]") {
+  // Light straight down over [-2,2] x [0,1] x [-4,4] (light_view_test: s = (x + 2)/4,
+  // t = (4 - z)/8). A 16x16 map holds the ground (y = 0) everywhere and an occluder square at
+  // y = 1 over x in [0, 1], z in [-1, 0]; its texels get the occluder's depth.
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.direction = {0.0, -1.0, 0.0};
+  const glm::dmat4 T = textureMatrix(directionalLightView(sun, box({-2.0, 0.0, -4.0}, {2.0, 1.0, 4.0})));
+  auto depthOf = [&](const glm::dvec3& p) { const glm::dvec4 q = T * glm::dvec4(p, 1.0); return float(q.z / q.w); };
+  const int n = 16;
+  DepthTexture map = uniformTexture(n, 0.0f);
+  for (int ty = 0; ty < n; ++ty)
+    for (int tx = 0; tx < n; ++tx) {
+      const double s = (tx + 0.5) / n, t = (ty + 0.5) / n;
+      const double x = 4.0 * s - 2.0, z = 4.0 - 8.0 * t;
+      const bool occluded = x > 0.0 && x < 1.0 && z > -1.0 && z < 0.0;
+      map.depth[size_t(ty) * n + size_t(tx)] = depthOf({x, occluded ? 1.0 : 0.0, z});
+    }
+  ShadowLookup lookup;
+  lookup.textureMatrix = T;
+  lookup.sampler.texture = &map;
+  lookup.constantBias = 1e-4;  // the ground compares against its own depth
+  CHECK(lookup.factor({0.5, 0.0, -0.5}) == 0.4);   // under the occluder
+  CHECK(lookup.factor({0.5, 1.0, -0.5}) == 1.0);   // the occluder's top itself
+  CHECK(lookup.factor({-1.0, 0.0, -0.5}) == 1.0);  // beside it
+  CHECK(lookup.factor({0.5, 0.0, 2.0}) == 1.0);
+}
+
+TEST_CASE("cube shadow lookup uses the face the direction from the light selects", "[shadowmap]") {
+  Light light;
+  light.position = {0.0, 0.0, 0.0};
+  const auto views = pointLightCubeViews(light, box({-4.0, -4.0, -4.0}, {4.0, 4.0, 4.0}));
+  // Every face's map is empty (depth 1) except +y, which is full of a near occluder (depth 0).
+  DepthTexture empty = uniformTexture(8, 1.0f), blocked = uniformTexture(8, 0.0f);
+  CubeShadowLookup cube;
+  cube.lightPosition = light.position;
+  for (int f = 0; f < 6; ++f) {
+    cube.faces[size_t(f)].textureMatrix = textureMatrix(views[size_t(f)]);
+    cube.faces[size_t(f)].sampler.texture = CubeFace(f) == CubeFace::PositiveY ? &blocked : &empty;
+  }
+  CHECK(cube.factor({0.3, 2.0, -0.5}) == 0.4);  // +y
+  CHECK(cube.factor({2.0, 0.3, -0.5}) == 1.0);  // +x
+  CHECK(cube.factor({0.3, -2.0, 0.5}) == 1.0);  // -y
+  CHECK(cube.factor({-1.0, 0.5, 3.0}) == 1.0);  // +z
+}
