@@ -64,11 +64,12 @@ void addOutdoor(Scene& scene, const OutdoorOptions& o) {
         SceneBuilder::node("pole" + std::to_string(i), pole, metal, translation({6.0, 3.0, 15.0 - 14.0 * i})));
   b.root(std::move(outdoor));
 
-  // Low sun, about 24 degrees above the horizon, shining from the front right across the scene.
+  // Low sun, about 25 degrees above the horizon, from behind on the right: the long shadows run
+  // across the ground towards the camera, near and far.
   Light sun;
   sun.name = "sun";
   sun.type = LightType::Directional;
-  sun.direction = glm::normalize(glm::dvec3(-0.5, -0.4, -0.75));
+  sun.direction = glm::normalize(glm::dvec3(-0.75, -0.42, 0.5));
   sun.color = glm::dvec3(1.0);
   scene.lights.push_back(sun);
 

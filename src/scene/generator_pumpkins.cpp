@@ -20,8 +20,8 @@ struct PumpkinPlace {
 
 // The lantern first; two pumpkins sit in front of its face, where its light falls.
 constexpr PumpkinPlace kPumpkins[7] = {
-    {0.5, 1.0, 0.45, -70.0},  // the hollow lantern; its face looks to the front, a little right
-    {1.2, 2.3, 0.26, 15.0},   {-0.1, 2.5, 0.3, 40.0},   {-1.7, 0.3, 0.36, 75.0},
+    {0.5, 1.0, 0.45, -90.0},  // the hollow lantern; its face looks to the front (+z)
+    {1.3, 2.3, 0.26, 15.0},   {0.3, 2.7, 0.3, 40.0},   {-1.7, 0.3, 0.36, 75.0},
     {2.5, 0.4, 0.4, 110.0},   {-2.6, -1.7, 0.38, 5.0}, {1.6, -1.9, 0.3, 60.0},
 };
 
@@ -88,11 +88,12 @@ void addPumpkins(Scene& scene, const PumpkinOptions& o) {
   if (o.setView) {
     scene.width = 800;
     scene.height = 640;
-    scene.ambient = glm::dvec3(0.08);
-    // Left of the lantern's face: its shell lies between the candle and the eye, so the camera is
-    // inside the lantern's shadow volume (000 Abb. 5.8) and z-pass miscounts.
-    scene.camera.eye = {-2.8, 1.5, 3.6};
-    scene.camera.target = {0.3, 0.4, 0.6};
+    scene.ambient = glm::dvec3(0.1);
+    // 42 degrees left of the lantern's face, outside every opening: its shell lies between the
+    // candle and the eye, so the camera is inside the lantern's shadow volume (000 Abb. 5.8) and
+    // z-pass miscounts, while the face still shows.
+    scene.camera.eye = {-1.4, 1.1, 3.1};
+    scene.camera.target = {0.4, 0.35, 1.0};
     scene.camera.up = {0.0, 1.0, 0.0};
     scene.camera.fovYDegrees = 55.0;
     scene.camera.nearPlane = 0.05;
