@@ -1,5 +1,8 @@
 #include "scene/yaml_document.h"
 
+#include <sstream>
+
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 namespace shadowref {
@@ -95,9 +98,46 @@ class Converter {
   size_t count_ = 0;
 };
 
-std::vector<YAML::Node> loadAll(const std::string& text, const MarkMapper& map) {
+// Records where each document of a stream starts.
+class DocumentCounter : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> starts;
+  void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+struct Documents {
+  YAML::Node first;
+  size_t count = 0;          // 0, 1, or 2 meaning "more than one"
+  YAML::Mark secondStart;
+};
+
+// Not YAML::LoadAll: in yaml-cpp 0.7 it loops forever, allocating, on a stray flow token at
+// document level (the input "," — yaml-cpp issue #1040, fixed upstream by PR #1319). Instead
+// the stream is walked for at most two documents; a second one that starts where the first did
+// is that bug's symptom, a token no document can begin with.
+Documents loadDocuments(const std::string& text, const MarkMapper& map) {
   try {
-    return YAML::LoadAll(text);
+    Documents docs;
+    std::istringstream stream(text);
+    YAML::Parser parser(stream);
+    DocumentCounter counter;
+    while (docs.count < 2 && parser.HandleNextDocument(counter)) ++docs.count;
+    if (docs.count == 2) {
+      const YAML::Mark& a = counter.starts.at(0);
+      const YAML::Mark& b = counter.starts.at(1);
+      if (a.pos == b.pos) throw SceneError(map(b), "YAML syntax error: unexpected token where a document should start");
+      docs.secondStart = b;
+    }
+    if (docs.count > 0) docs.first = YAML::Load(text);
+    return docs;
   } catch (const YAML::Exception& e) {
     // yaml-cpp's what() repeats the location in its own words; its msg is the bare reason.
     throw SceneError(map(e.mark), "YAML syntax error: " + e.msg);
@@ -108,23 +148,22 @@ std::vector<YAML::Node> loadAll(const std::string& text, const MarkMapper& map) 
 
 YamlValue parseYaml(const std::string& text, const std::string& fileName) {
   MarkMapper map{SourceLocation{fileName, 0, 0}, false};
-  std::vector<YAML::Node> docs = loadAll(text, map);
-  if (docs.empty()) throw SceneError(SourceLocation{fileName, 0, 0}, "the file holds no YAML document");
-  if (docs.size() > 1)
-    throw SceneError(map(docs[1].Mark()), "a scene file holds one YAML document, this is the second");
-  return Converter(map).convert(docs[0], 0);
+  Documents docs = loadDocuments(text, map);
+  if (docs.count == 0) throw SceneError(SourceLocation{fileName, 0, 0}, "the file holds no YAML document");
+  if (docs.count > 1) throw SceneError(map(docs.secondStart), "a scene file holds one YAML document, this is the second");
+  return Converter(map).convert(docs.first, 0);
 }
 
 YamlValue parseYamlFragment(const std::string& text, const SourceLocation& origin) {
   MarkMapper map{origin, true};
-  std::vector<YAML::Node> docs = loadAll(text, map);
-  if (docs.empty()) {
+  Documents docs = loadDocuments(text, map);
+  if (docs.count == 0) {
     YamlValue empty;
     empty.at = origin;
     return empty;
   }
-  if (docs.size() > 1) throw SceneError(map(docs[1].Mark()), "more than one YAML document in a value");
-  return Converter(map).convert(docs[0], 0);
+  if (docs.count > 1) throw SceneError(map(docs.secondStart), "more than one YAML document in a value");
+  return Converter(map).convert(docs.first, 0);
 }
 
 }  // namespace shadowref

@@ -215,7 +215,8 @@ TEST_CASE("values outside their range are errors at the value", "[loader]") {
 TEST_CASE("a file that is not one map of sections is an error", "[loader]") {
   CHECK_THAT(errorOf(""), StartsWith("t.yaml: the file holds no YAML document"));
   CHECK_THAT(errorOf("- 1\n- 2\n"), StartsWith("t.yaml:1:1: a scene file is a map of sections"));
-  CHECK_THAT(errorOf("camera: {}\n---\ncamera: {}\n"), StartsWith("t.yaml:3:1: a scene file holds one YAML document"));
+  // Reported at the "---" that starts the second document.
+  CHECK_THAT(errorOf("camera: {}\n---\ncamera: {}\n"), StartsWith("t.yaml:2:1: a scene file holds one YAML document"));
   CHECK_THAT(errorOf("[1, 2]: x\n"), StartsWith("t.yaml:1:1: a key must be a plain name"));
 }
 
@@ -264,4 +265,13 @@ TEST_CASE("a -D override with an unparsable value is reported at the value on th
   // A value that is valid alone but makes the scene invalid is reported where it was given.
   o.overrides = {"camera.far=0.01"};
   CHECK_THAT(errorOf(kBoxScene, o), StartsWith("<command line>:1:12: camera: near (0.1) must be less than far (0.01)"));
+}
+
+TEST_CASE("a stray ',' where a document starts is a syntax error, not yaml-cpp's endless LoadAll loop", "[loader]") {
+  // Found by fuzz/run.sh: yaml-cpp 0.7's LoadAll never returns on it (yaml-cpp issue #1040).
+  CHECK_THAT(errorOf(","), StartsWith("t.yaml:1:1: YAML syntax error: unexpected token"));
+  CHECK_THAT(errorOf("\n,\n"), StartsWith("t.yaml:2:1: YAML syntax error: unexpected token"));
+  LoadOptions o;
+  o.overrides = {"camera.near=,"};
+  CHECK_THAT(errorOf(kBoxScene, o), StartsWith("<command line>:1:13: YAML syntax error: unexpected token"));
 }
