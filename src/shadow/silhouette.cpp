@@ -51,40 +51,47 @@ void kuhnSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing, std::v
 void yenKwoonSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing, std::vector<SilhouetteEdge>& out,
                         SilhouetteWorkspace& ws) {
   out.clear();
-  const size_t triangles = mesh.weldedTriangles.size();
-  // At most 3 edges per triangle; keep the table at most half full.
-  const size_t capacity = std::bit_ceil(std::max<size_t>(16, 6 * triangles));
-  ws.toggleSlots.assign(capacity, SilhouetteWorkspace::ToggleSlot{});
   ws.toggleOrder.clear();
+  size_t lit = 0;
+  for (uint8_t f : facing) lit += f;
+  // 3 edges per lit triangle at most; keep the table at most half full.
+  const size_t needed = std::bit_ceil(std::max<size_t>(16, 6 * lit));
+  if (ws.toggleSlots.size() < needed || ws.toggleStamp >= 0x7FFFFFFFu) {
+    ws.toggleSlots.assign(std::max(needed, ws.toggleSlots.size()), SilhouetteWorkspace::ToggleSlot{});
+    ws.toggleStamp = 0;
+  }
+  const uint32_t stamp = ++ws.toggleStamp;
+  const uint32_t absent = stamp * 2, present = stamp * 2 + 1;
+  const size_t capacity = ws.toggleSlots.size();
   const int shift = 64 - std::countr_zero(capacity);
   const size_t mask = capacity - 1;
 
-  for (uint32_t t = 0; t < triangles; ++t) {
+  const auto& tris = mesh.weldedTriangles;
+  for (uint32_t t = 0; t < tris.size(); ++t) {
     if (!facing[t]) continue;
-    const glm::uvec3 tri = mesh.weldedTriangles[t];
     for (int i = 0; i < 3; ++i) {
-      const uint32_t a = tri[i], b = tri[(i + 1) % 3];
-      const uint64_t key = pairKey(a, b);
+      const uint64_t key = pairKey(tris[t][i], tris[t][(i + 1) % 3]);
       size_t slot = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift);
-      while (ws.toggleSlots[slot].used && ws.toggleSlots[slot].key != key) slot = (slot + 1) & mask;
+      while (ws.toggleSlots[slot].state / 2 == stamp && ws.toggleSlots[slot].key != key) slot = (slot + 1) & mask;
       SilhouetteWorkspace::ToggleSlot& s = ws.toggleSlots[slot];
-      if (!s.used) {
-        s.used = true;
+      if (s.state / 2 != stamp) {
         s.key = key;
         ws.toggleOrder.push_back(static_cast<uint32_t>(slot));
-      } else if (s.present) {
-        s.present = false;  // seen twice: an interior edge of the lit region
+      } else if (s.state == present) {
+        s.state = absent;  // seen twice: an interior edge of the lit region
         continue;
       }
-      s.present = true;
-      s.a = a;
-      s.b = b;
+      s.state = present;
       s.triangle = t;
     }
   }
+  // The edge as it runs in the triangle that put it in the list.
   for (uint32_t slot : ws.toggleOrder) {
     const SilhouetteWorkspace::ToggleSlot& s = ws.toggleSlots[slot];
-    if (s.present) out.push_back({s.a, s.b, s.triangle});
+    if (s.state != present) continue;
+    const uint32_t lo = static_cast<uint32_t>(s.key >> 32), hi = static_cast<uint32_t>(s.key);
+    const bool ascending = cornerOfEdge(tris[s.triangle], lo, hi) >= 0;
+    out.push_back(ascending ? SilhouetteEdge{lo, hi, s.triangle} : SilhouetteEdge{hi, lo, s.triangle});
   }
 }
 

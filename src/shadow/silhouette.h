@@ -48,13 +48,16 @@ struct SilhouetteEdge {
 // Scratch buffers of the algorithms that need more than the mesh's edge list.
 struct SilhouetteWorkspace {
   // Yen Kwoon: open-addressing table keyed by the unordered vertex pair, and the insertion order.
+  // A slot belongs to the current call when its stamp matches `toggleStamp`, so the table is never
+  // cleared between calls (only when it grows, or once every 2^31 calls).
   struct ToggleSlot {
     uint64_t key = 0;
-    uint32_t a = 0, b = 0, triangle = 0;
-    bool used = false, present = false;
+    uint32_t triangle = 0;  // the light-facing triangle that last added the edge
+    uint32_t state = 0;     // stamp * 2 + (1 when the edge is in the list)
   };
   std::vector<ToggleSlot> toggleSlots;
   std::vector<uint32_t> toggleOrder;
+  uint32_t toggleStamp = 0;
   // Kilgard: neighbour of each triangle across its edge i (corner i -> corner i+1).
   std::vector<std::array<uint32_t, 3>> neighbours;
   // Lengyel: its own edge list, and per vertex the first edge starting there (a linked list).

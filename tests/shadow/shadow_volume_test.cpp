@@ -137,3 +137,23 @@ TEST_CASE("shadow volume: the per-triangle volumes are closed, and their sides c
           Approx(s * s * s * signedVolume(mesh)).epsilon(1e-9));
   }
 }
+
+TEST_CASE("shadow volume: a second build with reused buffers does not reallocate them", "[volumes][shadow_volume]") {
+  const Mesh torus = makeTorus(1.0, 0.4, 24, 12);
+  const glm::dvec4 light(2, 3, 1, 1);
+  for (SilhouetteAlgorithm algorithm : {SilhouetteAlgorithm::Kuhn, SilhouetteAlgorithm::YenKwoon,
+                                        SilhouetteAlgorithm::Kilgard, SilhouetteAlgorithm::Lengyel}) {
+    INFO(name(algorithm));
+    ShadowVolumeWorkspace ws;
+    ShadowVolume v;
+    buildShadowVolume(torus, light, algorithm, true, v, &ws);
+    const void* before[] = {v.positions.data(), v.sides.data(), v.frontCap.data(), v.backCap.data(),
+                            v.silhouette.data(), ws.facing.data(), ws.silhouette.toggleSlots.data(),
+                            ws.silhouette.neighbours.data(), ws.silhouette.lengyelEdges.data()};
+    buildShadowVolume(torus, light, algorithm, true, v, &ws);
+    const void* after[] = {v.positions.data(), v.sides.data(), v.frontCap.data(), v.backCap.data(),
+                           v.silhouette.data(), ws.facing.data(), ws.silhouette.toggleSlots.data(),
+                           ws.silhouette.neighbours.data(), ws.silhouette.lengyelEdges.data()};
+    for (size_t i = 0; i < std::size(before); ++i) CHECK(before[i] == after[i]);
+  }
+}
