@@ -209,3 +209,25 @@ TEST_CASE("oracle: a stencil comparison skips edge pixels and compares counts mo
   CHECK(zfail.mismatches == 1);
   CHECK(zfail.report == "1,0: stencil 255, oracle 2 (hit instance 0)\n");
 }
+
+TEST_CASE("oracle: a mirrored instance (negative determinant) casts the same shadow as the unmirrored one",
+          "[oracle]") {
+  // The cube is symmetric in x, so mirroring it there changes only its triangles' winding in world
+  // space; the volume's outside must still be the outside.
+  const Light light = pointLight({0.3, 5.0, -0.2});
+  const Scene plain = boxOverFloor();
+  Scene mirrored = boxOverFloor();
+  mirrored.roots[1].local[0][0] = -1.0;
+  REQUIRE(glm::determinant(mirrored.roots[1].local) < 0.0);
+  const OracleImage a = castOracle(plain, light), b = castOracle(mirrored, light);
+  size_t compared = 0, differing = 0, shadowed = 0;
+  for (size_t i = 0; i < a.zfail.size(); ++i) {
+    if (a.nearEdge[i] || b.nearEdge[i]) continue;
+    ++compared;
+    shadowed += a.zfail[i] > 0;
+    differing += a.zpass[i] != b.zpass[i] || a.zfail[i] != b.zfail[i] || a.lit[i] != b.lit[i];
+  }
+  CHECK(differing == 0);
+  CHECK(shadowed > 300);
+  CHECK(compared > 20000);
+}

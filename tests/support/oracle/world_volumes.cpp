@@ -49,17 +49,9 @@ WorldVolumes buildWorldVolumes(const std::vector<Instance>& instances, const Lig
     const double orientation = glm::determinant(inst.world) < 0.0 ? -1.0 : 1.0;
     const int volumeIndex = static_cast<int>(out.volumeInstances.size());
     out.volumeInstances.push_back(static_cast<int>(i));
-    const size_t firstCap = out.triangles.size() + volume.sides.size();
     appendPart(volume, VolumePart::Side, world, static_cast<int>(i), volumeIndex, orientation, out);
     appendPart(volume, VolumePart::FrontCap, world, static_cast<int>(i), volumeIndex, orientation, out);
     appendPart(volume, VolumePart::BackCap, world, static_cast<int>(i), volumeIndex, orientation, out);
-    // The front cap repeats the light-facing triangles in mesh order (caps.h); recover which.
-    size_t next = firstCap;
-    const Mesh& mesh = *inst.shadowMesh;
-    for (uint32_t t = 0; t < mesh.weldedTriangles.size() && next < firstCap + volume.frontCap.size(); ++t) {
-      const glm::uvec3 cap = volume.frontCap[next - firstCap];
-      if (cap == mesh.weldedTriangles[t]) out.triangles[next++].sourceTriangle = t;
-    }
   }
   return out;
 }

@@ -8,6 +8,7 @@
 // the winding inside out; `orientation` undoes that, so "outside" is always the outside.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -25,7 +26,6 @@ struct VolumeTriangle {
   int instance = -1;           // index into Scene::instances()
   int volume = -1;             // index of the volume in WorldVolumes::volumeInstances
   VolumePart part = VolumePart::Side;
-  uint32_t sourceTriangle = kNoTriangle;  // front cap: the mesh triangle it repeats
   double orientation = 1.0;    // -1 for a mirroring world matrix
   std::array<uint32_t, 3> index{};        // vertex indices within the volume (for adjacency)
 
