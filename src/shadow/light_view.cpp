@@ -78,6 +78,10 @@ LightView spotLightView(const Light& light, const Aabb& bounds) {
   return v;
 }
 
+LightView shadowLightView(const Light& light, const Aabb& bounds) {
+  return light.type == LightType::Directional ? directionalLightView(light, bounds) : spotLightView(light, bounds);
+}
+
 glm::dmat4 biasMatrix() {
   glm::dmat4 b(0.5);  // diagonal 0.5, then [3][3] = 1
   b[3] = glm::dvec4(0.5, 0.5, 0.5, 1.0);  // column 3: the translation

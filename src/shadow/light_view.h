@@ -45,6 +45,10 @@ LightView directionalLightView(const Light& light, const Aabb& bounds);
 inline constexpr double kMinNearOverFar = 1e-3;
 LightView spotLightView(const Light& light, const Aabb& bounds);
 
+// The map's view for a directional or spot light (the two 002 §3.2 allows): directionalLightView
+// or spotLightView. Point lights need the six views of pointLightCubeViews instead.
+LightView shadowLightView(const Light& light, const Aabb& bounds);
+
 // The bias matrix of 002 §3.1 / Listing 4: x, y, z from [−1, 1] to [0, 1]. The seed prints it with
 // the translation 0.5, 0.5, 0.5 in the last ROW: that is OpenGL's column-major array order
 // (the MATRIX4X4 constructor of Listing 4 takes the array), not the mathematical matrix, whose

@@ -180,4 +180,15 @@ Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& clip, double focusRe
   return tz;
 }
 
+TrapezoidalView trapezoidalView(const Camera& camera, double aspect, const LightView& light,
+                                const Aabb& sceneBounds, double focusRegion) {
+  TrapezoidalView v;
+  v.light = light;
+  const auto corners = frustumCorners(camera, aspect, fitFarToBounds(camera, sceneBounds));
+  v.trapezoid = computeTrapezoid(transformCorners(light.projection * light.view, corners), focusRegion);
+  v.mapProjection = v.trapezoid.NT * light.projection;
+  v.texture = textureMatrix(light, v.trapezoid.NT);
+  return v;
+}
+
 }  // namespace shadowref

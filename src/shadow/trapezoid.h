@@ -51,6 +51,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
+#include "shadow/light_view.h"
 #include "shadow/trapezoid_to_square.h"
 
 namespace shadowref {
@@ -98,5 +99,19 @@ bool nearPlaneInsideFarPlane(const std::array<glm::dvec2, 8>& p);
 // light the frustum must lie in front of the light; otherwise NT is the identity, fallback set).
 // focusRegion in (0, 1); 002 uses 0.4.
 Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& frustumCornersLightClip, double focusRegion);
+
+// One frame's trapezoidal shadow map, put together (002 Listings 9, 11, 12): the camera frustum,
+// its far plane fitted to the scene (fitFarToBounds), in the light's clip space; the trapezoid;
+// the map pass's projection N_T · P_light (with view V_light); the camera pass's texture matrix
+// bias · N_T · P_light · V_light. Inside the trapezoid the warped w is ≥ 1 (it is y after step 5
+// of N_T), so light depths |z| ≤ 1 are not clipped by the warp.
+struct TrapezoidalView {
+  LightView light;             // the unwarped light view (orthographic for 002)
+  Trapezoid trapezoid;
+  glm::dmat4 mapProjection{1.0};  // N_T · P_light: the projection of the map pass
+  glm::dmat4 texture{1.0};        // bias · N_T · P_light · V_light
+};
+TrapezoidalView trapezoidalView(const Camera& camera, double aspect, const LightView& light,
+                                const Aabb& sceneBounds, double focusRegion);
 
 }  // namespace shadowref

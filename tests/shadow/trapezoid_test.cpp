@@ -428,3 +428,41 @@ TEST_CASE("fitFarToBounds reaches the farthest box corner along the view, within
   c.farPlane = 12.0;
   CHECK_THAT(fitFarToBounds(c, scene), WithinAbs(12.0, 1e-12));
 }
+
+TEST_CASE("trapezoidalView: points inside the camera frustum land in the map, warped w >= 1", "[shadowmap]") {
+  for (Setup s : typicalSetups()) {
+    s.camera.farPlane = kInfinity;  // TSM fits a finite far to the scene
+    Light light;
+    light.type = LightType::Directional;
+    light.direction = s.lightDirection;
+    const LightView lv = directionalLightView(light, s.scene);
+    const TrapezoidalView tv = trapezoidalView(s.camera, s.aspect, lv, s.scene, 0.4);
+    REQUIRE_FALSE(tv.trapezoid.fallback);
+    const auto corners = frustumCorners(s.camera, s.aspect, fitFarToBounds(s.camera, s.scene));
+    // Interior points: fixed convex combinations of the eight corners.
+    for (int k = 0; k < 27; ++k) {
+      const double a = (k % 3 + 0.5) / 3.0, b = ((k / 3) % 3 + 0.5) / 3.0, c = (k / 9 + 0.5) / 3.0;
+      const glm::dvec3 nearP = glm::mix(glm::mix(corners[0], corners[1], a), glm::mix(corners[3], corners[2], a), b);
+      const glm::dvec3 farP = glm::mix(glm::mix(corners[4], corners[5], a), glm::mix(corners[7], corners[6], a), b);
+      const glm::dvec3 p = glm::mix(nearP, farP, c);
+      const glm::dvec4 warped = tv.mapProjection * lv.view * glm::dvec4(p, 1.0);
+      CHECK(warped.w >= 1.0 - 1e-12);
+      CHECK(std::abs(warped.z) <= warped.w);  // inside the depth range: not clipped by the warp
+      const glm::dvec4 strq = tv.texture * glm::dvec4(p, 1.0);
+      for (int i = 0; i < 3; ++i) {
+        CHECK(strq[i] / strq.w >= -1e-12);
+        CHECK(strq[i] / strq.w <= 1.0 + 1e-12);
+      }
+    }
+  }
+}
+
+TEST_CASE("shadowLightView is orthographic for a directional light, perspective for a spot", "[shadowmap]") {
+  const Aabb scene = box({-1.0, -1.0, -1.0}, {1.0, 1.0, 1.0});
+  Light l;
+  l.type = LightType::Directional;
+  CHECK(shadowLightView(l, scene).projection[2][3] == 0.0);
+  l.type = LightType::Spot;
+  l.position = {0.0, 5.0, 0.0};
+  CHECK(shadowLightView(l, scene).projection[2][3] == -1.0);
+}
