@@ -231,3 +231,17 @@ TEST_CASE("oracle: a mirrored instance (negative determinant) casts the same sha
   CHECK(shadowed > 300);
   CHECK(compared > 20000);
 }
+
+TEST_CASE("oracle: a finite far plane ends the primary rays there, P_inf does not", "[oracle]") {
+  // The floor's centre is 10 units deep in view space; the bottom row hits it at a depth of about
+  // 7 (8 / sin(53.13° + 30°) along a ray 30° off the axis).
+  Scene scene = boxOverFloor();
+  scene.camera.farPlane = 9.5;
+  const Light light = pointLight({0.0, 5.0, 0.0});
+  const OracleImage clipped = castOracle(scene, light);
+  CHECK(clipped.hitMask[clipped.index(100, 80)] == 0);
+  CHECK(clipped.hitMask[clipped.index(100, 0)] == 1);
+  OracleOptions infinite;
+  infinite.forceInfiniteProjection = true;
+  CHECK(castOracle(scene, light, infinite).hitMask[clipped.index(100, 80)] == 1);
+}
