@@ -34,14 +34,17 @@
 //    Here t0…t3 are ordered counter-clockwise in light space (t0 base-right, t1 base-left,
 //    t2 top-left, t3 top-right, seen with the base up), which makes N_T orientation-preserving.
 //  - The degenerate case (Listing 10e): the seed's code falls back when ANY near corner lies
-//    inside the far-plane polygon, its text says all four. Here: all four, i.e. the near polygon
+//    inside the far-plane polygon; its text says first "one of", then "all four" near corners.
+//    Here: all four, i.e. the near polygon
 //    inside the far polygon (SPEC.md §4). For an orthographic light that happens exactly when the
 //    light direction (or its opposite) lies strictly inside the camera's field of view:
 //    |L_x / L_z| < tan(fovX/2) and |L_y / L_z| < tan(fovY/2) in camera space, whatever near and
 //    far. So it triggers for a cone of directions around "looking along the light", not only at
-//    exact alignment; there the trapezoid would open to almost 180° and waste the map.
-//    The fallback is the bounding rectangle of all eight corners, not the far-plane polygon of
-//    Listing 10e, which the seed itself notes can miss parts of the frustum.
+//    exact alignment: inside that cone the top line runs through a far corner behind the eye, and
+//    the wedge from q must open wide to hold the whole far polygon, wasting most of the map.
+//    The fallback is the bounding rectangle of all eight corners (clipped to the light's view
+//    [−1, 1]²), not the far-plane polygon of Listing 10e, which the seed itself notes can miss
+//    parts of the frustum ("Bereiche ..., für die keine korrekte Shadow Map entsteht").
 //  - When λ − 2δ' − λξ ≤ 0 (focus point beyond the 80 % line already, η infinite) the side lines
 //    are parallel: the trapezoid's limit is the rectangle along the centre line (parallelSides).
 #pragma once
@@ -61,7 +64,7 @@ namespace shadowref {
 inline constexpr double kEightyPercentLine = -0.6;
 
 struct Trapezoid {
-  glm::dvec2 t[4];        // t0, t1 base line; t2, t3 top line; counter-clockwise
+  glm::dvec2 t[4]{};      // t0, t1 base line; t2, t3 top line; counter-clockwise
   glm::dvec2 apex{0.0};   // q (meaningless when fallback or parallelSides)
   bool fallback = false;  // degenerate case: bounding rectangle of the frustum (002 Listing 10e)
   bool parallelSides = false;  // η infinite: rectangle along the centre line
@@ -102,8 +105,9 @@ Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& frustumCornersLightC
 
 // One frame's trapezoidal shadow map, put together (002 Listings 9, 11, 12): the camera frustum,
 // its far plane fitted to the scene (fitFarToBounds), in the light's clip space; the trapezoid;
-// the map pass's projection N_T · P_light (with view V_light); the camera pass's texture matrix
-// bias · N_T · P_light · V_light. Inside the trapezoid the warped w is ≥ 1 (it is y after step 5
+// the map pass's projection N_T · P_light with view V_light (Listing 12 loads N_T as the
+// projection and P_light · V_light as the modelview: the same product); the camera pass's texture
+// matrix bias · N_T · P_light · V_light. Inside the trapezoid the warped w is ≥ 1 (it is y after step 5
 // of N_T), so light depths |z| ≤ 1 are not clipped by the warp.
 struct TrapezoidalView {
   LightView light;             // the unwarped light view (orthographic for 002)
