@@ -33,6 +33,8 @@ void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, con
     inst.world = world;
     inst.material = node.material;
     inst.worldBounds = transformBounds(inst.mesh->bounds, world);
+    inst.shadowBounds = inst.shadowMesh ? transformBounds(inst.shadowMesh->bounds, world) : Aabb{};
+    inst.mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
     out.push_back(std::move(inst));
   }
   for (const Node& child : node.children) flatten(scene, child, world, path, out);

@@ -110,6 +110,8 @@ struct Instance {
   glm::dmat4 world{1.0};
   int material = 0;
   Aabb worldBounds;
+  Aabb shadowBounds;      // world bounds of shadowMesh (the proxy's, when there is one)
+  bool mirrored = false;  // det(world) < 0: windings flip in window space
 };
 
 struct Scene {

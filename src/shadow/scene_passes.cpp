@@ -5,6 +5,13 @@
 
 namespace shadowref {
 
+const RenderState& stateFor(const RenderState& state, const Instance& instance, RenderState& scratch) {
+  if (!instance.mirrored) return state;
+  scratch = state;
+  scratch.frontFace = state.frontFace == FrontFace::CCW ? FrontFace::CW : FrontFace::CCW;
+  return scratch;
+}
+
 std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view) {
   std::vector<PreparedInstance> out;
   out.reserve(instances.size());
@@ -84,8 +91,9 @@ namespace {
 
 void drawInstance(Renderer& renderer, const RenderState& state, const PreparedInstance& p, const LightingSetup& lighting,
                   const Material& material, DrawKind kind) {
+  RenderState mirrored;
   DrawCall call;
-  call.state = &state;
+  call.state = &stateFor(state, *p.instance, mirrored);
   call.indices = p.indices;
   call.tag = drawTag(kind, p.index);
   if (material.shading == ShadingModel::PerPixel) {
@@ -136,8 +144,9 @@ void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scen
 void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared,
                    DrawKind kind) {
   for (const PreparedInstance& p : prepared) {
+    RenderState mirrored;
     DrawCall call;
-    call.state = &state;
+    call.state = &stateFor(state, *p.instance, mirrored);
     call.vertices = p.vertices;
     call.indices = p.indices;
     call.tag = drawTag(kind, p.index);

@@ -25,6 +25,11 @@ struct PreparedInstance {
   std::vector<uint32_t> indices;
 };
 
+// The state to draw an instance with: `state` itself, or for a mirrored instance (det(world) < 0,
+// which turns every winding around in window space) a copy in `scratch` with the front face
+// flipped, so facing, culling and two-sided stencil see the faces they would unmirrored.
+const RenderState& stateFor(const RenderState& state, const Instance& instance, RenderState& scratch);
+
 std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view);
 
 PhongLight toPhongLight(const Light& light);

@@ -70,15 +70,16 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   std::vector<uint32_t> indices;
   for (size_t i = 0; i < instances.size(); ++i) {
     const Instance& inst = instances[i];
-    if (!inst.shadowMesh || !withinRange(light, inst.worldBounds)) continue;
+    if (!inst.shadowMesh || !withinRange(light, inst.shadowBounds)) continue;
     const VertexTransform xf{view * inst.world, projection};
     const Mesh& mesh = *inst.shadowMesh;
     vertices.resize(mesh.positions.size());
     for (size_t v = 0; v < mesh.positions.size(); ++v) vertices[v].position = xf.toClip(glm::dvec4(mesh.positions[v], 1.0));
     indices.clear();
     for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    RenderState mirrored;
     DrawCall call;
-    call.state = &state;
+    call.state = &stateFor(state, inst, mirrored);
     call.vertices = vertices;
     call.indices = indices;
     call.tag = drawTag(DrawKind::ShadowMap, int(i));
@@ -199,8 +200,9 @@ void drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& s
       lighting.lights.push_back(withinRange(s->light, p.instance->worldBounds) ? toPhongLight(s->light) : PhongLight{glm::dvec4(0.0)});
     }
     const ShadowMappedShader shader(lighting, active);
+    RenderState mirrored;
     DrawCall call;
-    call.state = &state;
+    call.state = &stateFor(state, *p.instance, mirrored);
     call.vertices = p.vertices;
     call.indices = p.indices;
     call.shader = &shader;

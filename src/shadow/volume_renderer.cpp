@@ -30,7 +30,7 @@ StencilCounting countingFor(ShadowMethod method, const Instance& inst, const Sce
                             const Light& light) {
   if (method == ShadowMethod::ZPass) return StencilCounting::ZPass;
   if (method == ShadowMethod::ZFail) return StencilCounting::ZFail;
-  return needsZFail(inst.worldBounds, scene.camera, view.aspect, light.homogeneous()) ? StencilCounting::ZFail
+  return needsZFail(inst.shadowBounds, scene.camera, view.aspect, light.homogeneous()) ? StencilCounting::ZFail
                                                                                       : StencilCounting::ZPass;
 }
 
@@ -46,22 +46,25 @@ struct VolumeDraw {
   ShadowVolumeWorkspace workspace;
   std::vector<ClipVertex> vertices;
   std::vector<uint32_t> indices;
+  const Instance* mirrored = nullptr;  // the instance built, when its world matrix mirrors
 
   void build(const PreparedInstance& p, const Light& light, const ShadowSettings& settings, bool withCaps) {
     const glm::dvec4 objectLight = lightInObjectSpace(p.instance->world, light.homogeneous());
     buildShadowVolume(*p.instance->shadowMesh, objectLight, settings.silhouette, withCaps, volume, &workspace);
+    mirrored = p.instance->mirrored ? p.instance : nullptr;
     vertices.resize(volume.positions.size());
     for (size_t i = 0; i < volume.positions.size(); ++i) vertices[i].position = p.transform.toClip(volume.positions[i]);
   }
 
   void draw(Renderer& renderer, const RenderState& state, VolumePart part, DrawKind kind, int instance,
             const FragmentShader* shader = nullptr) {
+    RenderState mirroredState;
     const std::vector<glm::uvec3>& triangles = volume.part(part);
     if (triangles.empty()) return;
     indices.clear();
     for (const glm::uvec3& t : triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
     DrawCall call;
-    call.state = &state;
+    call.state = mirrored ? &stateFor(state, *mirrored, mirroredState) : &state;
     call.vertices = vertices;
     call.indices = indices;
     call.shader = shader;
@@ -77,7 +80,7 @@ struct VolumeDraw {
 };
 
 bool castsFor(const PreparedInstance& p, const Light& light) {
-  return p.instance->shadowMesh != nullptr && withinRange(light, p.instance->worldBounds);
+  return p.instance->shadowMesh != nullptr && withinRange(light, p.instance->shadowBounds);
 }
 
 // Step 2: the volumes of every caster into the (cleared) stencil buffer.
