@@ -72,8 +72,13 @@ void readMaterials(const YamlValue& map, Scene& scene, Provenance& where) {
 void readMeshes(const YamlValue& map, Scene& scene, const std::string& baseDir, Provenance& where) {
   if (map.isNull()) return;
   if (!map.isMap()) failAt(map.at, "meshes: expected a map of name: source, got " + std::string(map.kindName()));
+  size_t triangles = 0;
   for (const YamlEntry& e : map.entries) {
     std::shared_ptr<Mesh> mesh = readMeshSource(e.value, e.key, "meshes." + e.key, baseDir, where);
+    triangles += mesh->triangles.size();
+    if (triangles > kMaxSceneFileTriangles)
+      failAt(e.keyAt, "meshes: more than " + std::to_string(kMaxSceneFileTriangles) + " triangles in all, up to '" +
+                          e.key + "'");
     bool replaced = false;
     for (auto& m : scene.meshes)
       if (m->name == e.key) m = mesh, replaced = true;

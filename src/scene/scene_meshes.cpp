@@ -35,6 +35,13 @@ glm::dvec3 readPositiveVec3(const YamlValue& v, const std::string& path) {
   return s;
 }
 
+// Each count alone may be large, but not both: the mesh would not fit in memory.
+void checkGrid(int a, int b, const YamlValue& v, const std::string& path) {
+  if (static_cast<long long>(a) * b > kMaxGridCells)
+    failAt(v.at, path + ": " + std::to_string(a) + " x " + std::to_string(b) + " segments are more than " +
+                     std::to_string(kMaxGridCells) + " cells");
+}
+
 template <class P>
 P readParams(const YamlValue& v, const std::string& path, const std::vector<Field<P>>& fields, Provenance& where) {
   P params;
@@ -53,6 +60,7 @@ Mesh readPrimitive(const std::string& kind, const YamlValue& v, const std::strin
                                                     count("slices", &SphereParams::slices, 3),
                                                     count("stacks", &SphereParams::stacks, 2)};
     SphereParams p = readParams(v, path, f, where);
+    checkGrid(p.slices, p.stacks, v, path);
     return makeSphere(p.radius, p.slices, p.stacks);
   }
   if (kind == "cylinder" || kind == "cone") {
@@ -68,6 +76,7 @@ Mesh readPrimitive(const std::string& kind, const YamlValue& v, const std::strin
         count("major_segments", &TorusParams::majorSegments, 3),
         count("minor_segments", &TorusParams::minorSegments, 3)};
     TorusParams p = readParams(v, path, f, where);
+    checkGrid(p.majorSegments, p.minorSegments, v, path);
     // A tube thicker than the ring's radius passes through the axis: the surface intersects itself.
     if (!(p.minorRadius < p.majorRadius))
       failAt(where.find(path + ".minor_radius"), path + ": minor_radius must be less than major_radius");

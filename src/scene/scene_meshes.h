@@ -13,6 +13,8 @@ namespace shadowref {
 // Limits on tessellation counts in a scene file: enough for any picture, small enough that a
 // typo cannot ask for billions of triangles.
 inline constexpr int kMaxSegments = 1024;
+inline constexpr long long kMaxGridCells = 1LL << 18;       // slices x stacks of a sphere or torus
+inline constexpr size_t kMaxSceneFileTriangles = 1u << 23;  // all meshes of the meshes section
 
 // Builds the mesh described by `source` (a map with one key: box, sphere, cylinder, cone, torus,
 // plane, prism, obj or gltf). Errors: unknown kind, bad parameters, a missing or unreadable file

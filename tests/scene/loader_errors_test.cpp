@@ -275,3 +275,19 @@ TEST_CASE("a stray ',' where a document starts is a syntax error, not yaml-cpp's
   o.overrides = {"camera.near=,"};
   CHECK_THAT(errorOf(kBoxScene, o), StartsWith("<command line>:1:13: YAML syntax error: unexpected token"));
 }
+
+TEST_CASE("tessellation that would not fit in memory is an error at the primitive", "[loader]") {
+  CHECK_THAT(errorOf("meshes:\n  s: {sphere: {slices: 1024, stacks: 1024}}\n"),
+             StartsWith("t.yaml:2:15: meshes.s.sphere: 1024 x 1024 segments are more than 262144 cells"));
+  CHECK_THAT(errorOf("meshes:\n  t: {torus: {major_segments: 1000, minor_segments: 1000}}\n"),
+             StartsWith("t.yaml:2:14: meshes.t.torus: 1000 x 1000 segments"));
+  // 512 x 512 cells are 2 * 512 * 511 = 523264 triangles; 17 of them pass 2^23.
+  std::string yaml = "meshes:\n";
+  for (int i = 0; i < 17; ++i) yaml += "  s" + std::to_string(i) + ": {sphere: {slices: 512, stacks: 512}}\n";
+  CHECK_THAT(errorOf(yaml), StartsWith("t.yaml:18:3: meshes: more than 8388608 triangles in all, up to 's16'"));
+}
+
+TEST_CASE("a scene file that does not exist or is a folder is an error naming the path", "[loader]") {
+  CHECK_THAT(fileErrorOf("no_such_scene.yaml"), StartsWith(kData + "no_such_scene.yaml: scene file does not exist"));
+  CHECK_THAT(fileErrorOf(""), StartsWith(kData + ": not a regular file"));
+}
