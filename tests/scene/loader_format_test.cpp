@@ -204,3 +204,13 @@ TEST_CASE("describeScene lists nodes, meshes with topology, lights, bounds and t
   CHECK_THAT(text, Contains("shadow: zfail, silhouette kuhn"));
   CHECK_THAT(text, Contains("total: 1 instances, 12 triangles drawn"));
 }
+
+TEST_CASE("a glTF mesh is read from its path and welded", "[loader]") {
+  const std::string file = std::string(SHADOWREF_SOURCE_DIR) + "/tests/data/meshes/tetra.gltf";
+  const Scene s = load("meshes:\n  t: {gltf: '" + file + "'}\nnodes:\n  - {mesh: t}\n");
+  REQUIRE(s.meshes.size() == 1);
+  CHECK(s.meshes[0]->name == "t");
+  CHECK(s.meshes[0]->triangles.size() == 4);  // a tetrahedron
+  CHECK(s.meshes[0]->weldedPositions.size() == 4);
+  CHECK(s.meshes[0]->topology == Topology::Closed);
+}
