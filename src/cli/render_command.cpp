@@ -132,6 +132,7 @@ int runRender(const RenderArgs& args) {
   if (!scene) return kBadInput;
 
   FrameOptions options;
+  options.threads = args.threads;
   if (!args.method.empty()) {
     options.method = parseShadowMethod(args.method);
     if (!options.method) {

@@ -55,7 +55,7 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
   const ShadowMethod method = options.method.value_or(scene.shadow.method);
   FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}};
-  Renderer renderer(result.framebuffer);
+  Renderer renderer(result.framebuffer, options.threads);
   if (options.observer) renderer.watchPixel(options.watchX, options.watchY, options.observer);
   switch (method) {
     case ShadowMethod::None: renderUnshadowed(scene, options, result, renderer); break;

@@ -23,6 +23,8 @@ enum class VolumeViewMode : uint8_t {
 
 struct FrameOptions {
   std::optional<ShadowMethod> method;  // overrides the scene's shadow.method
+  // Rasterizer threads (0: all cores). Every buffer comes out byte-identical for any count.
+  int threads = 1;
   // Pixel history: every fragment at (x, y) is reported to the observer.
   int watchX = -1, watchY = -1;
   FragmentObserver* observer = nullptr;
