@@ -3,6 +3,8 @@
 // "what does DECR_WRAP do" is in one place.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -11,26 +13,86 @@
 
 namespace shadowref {
 
-bool scissorTest(const RenderState& state, int x, int y);
+// The per-fragment operations are defined inline here: they run once per fragment, and a call
+// across translation units for each would cost more than the operation itself.
+inline bool scissorTest(const RenderState& state, int x, int y) {
+  if (!state.scissorTest) return true;
+  const Rect& r = state.scissor;
+  return x >= r.x && x < r.x + r.width && y >= r.y && y < r.y + r.height;
+}
 
-bool compare(CompareFunc func, uint32_t incoming, uint32_t stored);
+inline bool compare(CompareFunc func, uint32_t incoming, uint32_t stored) {
+  switch (func) {
+    case CompareFunc::Never: return false;
+    case CompareFunc::Less: return incoming < stored;
+    case CompareFunc::Equal: return incoming == stored;
+    case CompareFunc::LEqual: return incoming <= stored;
+    case CompareFunc::Greater: return incoming > stored;
+    case CompareFunc::NotEqual: return incoming != stored;
+    case CompareFunc::GEqual: return incoming >= stored;
+    case CompareFunc::Always: return true;
+  }
+  return false;
+}
 
-// Stencil test: (ref & mask) func (stored & mask); ref clamped to [0, 255].
-bool stencilTest(const StencilFaceState& s, uint8_t stored);
+inline bool stencilTest(const StencilFaceState& s, uint8_t stored) {
+  const uint32_t ref = uint32_t(std::clamp(s.ref, 0, 255));
+  return compare(s.func, ref & s.mask, uint32_t(stored) & s.mask);
+}
 
-// The new stencil value for one op; the write mask is applied by writeStencil.
-uint8_t applyStencilOp(StencilOp op, uint8_t stored, int ref);
+inline uint8_t applyStencilOp(StencilOp op, uint8_t stored, int ref) {
+  switch (op) {
+    case StencilOp::Keep: return stored;
+    case StencilOp::Zero: return 0;
+    case StencilOp::Replace: return uint8_t(std::clamp(ref, 0, 255));
+    case StencilOp::Incr: return stored == 255 ? 255 : uint8_t(stored + 1);   // saturates
+    case StencilOp::Decr: return stored == 0 ? 0 : uint8_t(stored - 1);       // saturates
+    case StencilOp::Invert: return uint8_t(~stored);
+    case StencilOp::IncrWrap: return uint8_t(stored + 1);                     // 255 -> 0
+    case StencilOp::DecrWrap: return uint8_t(stored - 1);                     // 0 -> 255
+  }
+  return stored;
+}
 
-// Only the bits set in the write mask change.
-uint8_t writeStencil(uint8_t stored, uint8_t computed, uint8_t writeMask);
+inline uint8_t writeStencil(uint8_t stored, uint8_t computed, uint8_t writeMask) {
+  return uint8_t((stored & ~writeMask) | (computed & writeMask));
+}
 
-// Depth test on the buffer's codes (the fragment depth already converted to the buffer format).
-bool depthTest(CompareFunc func, uint32_t fragmentCode, uint32_t storedCode);
+inline bool depthTest(CompareFunc func, uint32_t fragmentCode, uint32_t storedCode) {
+  return compare(func, fragmentCode, storedCode);
+}
 
-double blendFactor(BlendFactor f, int channel, const glm::dvec4& src, const glm::dvec4& dst);
-glm::dvec4 blend(const BlendState& b, const glm::dvec4& src, const glm::dvec4& dst);
+inline double blendFactor(BlendFactor f, int c, const glm::dvec4& src, const glm::dvec4& dst) {
+  switch (f) {
+    case BlendFactor::Zero: return 0.0;
+    case BlendFactor::One: return 1.0;
+    case BlendFactor::SrcColor: return src[c];
+    case BlendFactor::OneMinusSrcColor: return 1.0 - src[c];
+    case BlendFactor::DstColor: return dst[c];
+    case BlendFactor::OneMinusDstColor: return 1.0 - dst[c];
+    case BlendFactor::SrcAlpha: return src.a;
+    case BlendFactor::OneMinusSrcAlpha: return 1.0 - src.a;
+    case BlendFactor::DstAlpha: return dst.a;
+    case BlendFactor::OneMinusDstAlpha: return 1.0 - dst.a;
+  }
+  return 0.0;
+}
 
-// Colour as a fixed-point GL colour buffer stores it: clamped to [0, 1], masked per channel.
-glm::vec4 writeColor(const glm::vec4& stored, const glm::dvec4& computed, const std::array<bool, 4>& mask);
+inline glm::dvec4 blend(const BlendState& b, const glm::dvec4& src, const glm::dvec4& dst) {
+  if (!b.enabled) return src;
+  // GL clamps the source colour to [0, 1] for fixed-point buffers before blending.
+  const glm::dvec4 s = glm::clamp(src, 0.0, 1.0);
+  glm::dvec4 out;
+  for (int c = 0; c < 4; ++c)
+    out[c] = s[c] * blendFactor(b.src, c, s, dst) + dst[c] * blendFactor(b.dst, c, s, dst);
+  return out;
+}
+
+inline glm::vec4 writeColor(const glm::vec4& stored, const glm::dvec4& computed, const std::array<bool, 4>& mask) {
+  glm::vec4 out = stored;
+  for (int c = 0; c < 4; ++c)
+    if (mask[c]) out[c] = float(std::clamp(computed[c], 0.0, 1.0));
+  return out;
+}
 
 }  // namespace shadowref

@@ -53,13 +53,13 @@ glm::dvec4 FragmentProcessor::shade(const TriangleSetup& t, int x, int y, double
   return shader_->shade(in);
 }
 
-void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
+template <bool watched>
+void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
   if (!scissorTest(state_, x, y)) return;
   ++stats_.fragments;
   const size_t at = fb_.index(x, y);
-  const bool watched = watch_ && watch_->observer && x == watch_->x && y == watch_->y;
   FragmentEvent event;
-  if (watched) {
+  if constexpr (watched) {
     event.x = x;
     event.y = y;
     event.drawIndex = watch_->drawIndex;
@@ -72,7 +72,7 @@ void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0
 
   const double z = fragmentDepth(t, x, y);
   const uint32_t zCode = fb_.depthCodec().encode(z);
-  if (watched) event.depth = fb_.depthCodec().decode(zCode);
+  if constexpr (watched) event.depth = fb_.depthCodec().decode(zCode);
 
   // Stencil test, then the depth test, then the stencil update (GL 2.1 §4.1.5, §4.1.6).
   const StencilFaceState& sface = state_.stencil[t.facing];
@@ -82,7 +82,7 @@ void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0
     const uint8_t next = writeStencil(*stencil, applyStencilOp(sface.sfail, *stencil, sface.ref), sface.writeMask);
     stats_.stencilWrites += next != *stencil;
     *stencil = next;
-    if (watched) {
+    if constexpr (watched) {
       event.stencilPassed = false;
       event.depthPassed = false;
       event.stencilAfter = next;
@@ -98,11 +98,11 @@ void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0
     const uint8_t next = writeStencil(*stencil, applyStencilOp(op, *stencil, sface.ref), sface.writeMask);
     stats_.stencilWrites += next != *stencil;
     *stencil = next;
-    if (watched) event.stencilAfter = next;
+    if constexpr (watched) event.stencilAfter = next;
   }
   if (!depthPassed) {
     ++stats_.depthFailed;
-    if (watched) {
+    if constexpr (watched) {
       event.depthPassed = false;
       watch_->observer->onFragment(event);
     }
@@ -115,9 +115,12 @@ void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0
     const glm::dvec4 src = shade(t, x, y, fb_.depthCodec().decode(zCode), e0, e1, e2);
     dst = writeColor(dst, blend(state_.blend, src, glm::dvec4(dst)), state_.colorMask);
     ++stats_.colorWrites;
-    if (watched) event.colorAfter = dst;
+    if constexpr (watched) event.colorAfter = dst;
   }
-  if (watched) watch_->observer->onFragment(event);
+  if constexpr (watched) watch_->observer->onFragment(event);
 }
+
+template void FragmentProcessor::processImpl<false>(const TriangleSetup&, int, int, int64_t, int64_t, int64_t);
+template void FragmentProcessor::processImpl<true>(const TriangleSetup&, int, int, int64_t, int64_t, int64_t);
 
 }  // namespace shadowref

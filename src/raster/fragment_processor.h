@@ -25,9 +25,17 @@ class FragmentProcessor {
   FragmentProcessor(Framebuffer& fb, const RenderState& state, const FragmentShader* shader,
                     RasterStats& stats, const PixelWatch* watch);
 
-  void process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2);
+  void process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
+    if (watch_ && watch_->observer && x == watch_->x && y == watch_->y) [[unlikely]]
+      processImpl<true>(t, x, y, e0, e1, e2);
+    else
+      processImpl<false>(t, x, y, e0, e1, e2);
+  }
 
  private:
+  // One body for both paths; the watched one also records a FragmentEvent (pixel history).
+  template <bool Watched>
+  void processImpl(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2);
   double fragmentDepth(const TriangleSetup& t, int x, int y) const;
   void interpolateVaryings(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2, double* out) const;
   glm::dvec4 shade(const TriangleSetup& t, int x, int y, double z, int64_t e0, int64_t e1, int64_t e2) const;
