@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "cli/bench_command.h"
 #include "cli/cli_common.h"
 #include "cli/compare_command.h"
 #include "cli/render_command.h"
@@ -15,10 +16,12 @@ int main(int argc, char** argv) {
   RenderArgs render;
   SceneArgs check, info;
   CompareArgs compare;
+  BenchArgs bench;
   addRenderCommand(app, render);
   addCheckCommand(app, check);
   addInfoCommand(app, info);
   addCompareCommand(app, compare);
+  addBenchCommand(app, bench);
   app.footer("Exit status: 0 success, 1 a failed render or comparison, 2 bad usage or bad input.");
   try {
     app.parse(argc, argv);
@@ -34,5 +37,6 @@ int main(int argc, char** argv) {
   if (app.got_subcommand("check")) return runCheck(check);
   if (app.got_subcommand("info")) return runInfo(info);
   if (app.got_subcommand("compare")) return runCompare(compare);
+  if (app.got_subcommand("bench")) return runBench(bench);
   return kBadInput;
 }

@@ -1,0 +1,79 @@
+#include "cli/bench_command.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include "raster/thread_pool.h"
+#include "shadow/frame_renderer.h"
+#include "shadow/shadow_method.h"
+
+namespace shadowref::cli {
+
+namespace {
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+}  // namespace
+
+void addBenchCommand(CLI::App& app, BenchArgs& args) {
+  CLI::App* bench = app.add_subcommand("bench", "Render a scene several times; print the median time per frame and pass");
+  bench->add_option("scene", args.scene.scene, "Scene file (YAML); omitted: the built-in room");
+  bench->add_option("--method", args.method, "Shadow method: " + shadowMethodNames());
+  bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(CLI::Range(1, 10000));
+  bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 256));
+  bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400");
+  bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");
+}
+
+int runBench(const BenchArgs& args) {
+  const std::optional<Scene> scene = loadSceneOrReport(args.scene);
+  if (!scene) return kBadInput;
+  FrameOptions options;
+  options.threads = args.threads;
+  if (!args.method.empty()) {
+    options.method = parseShadowMethod(args.method);
+    if (!options.method) {
+      std::cerr << "--method: unknown method '" << args.method << "' (expected one of " << shadowMethodNames() << ")\n";
+      return kBadInput;
+    }
+  }
+  const ShadowMethod method = options.method.value_or(scene->shadow.method);
+  std::vector<double> frameMs;
+  std::map<std::string, std::vector<double>> passMs;
+  std::vector<std::string> passOrder;
+  try {
+    renderFrame(*scene, options);  // warm-up: page in buffers and code
+    for (int i = 0; i < args.frames; ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      const FrameResult frame = renderFrame(*scene, options);
+      frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      for (const PassTiming& t : frame.timings) {
+        if (!passMs.count(t.pass)) passOrder.push_back(t.pass);
+        passMs[t.pass].push_back(t.milliseconds);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "bench: " << e.what() << '\n';
+    return kFailed;
+  }
+  const int threads = args.threads == 0 ? defaultThreadCount() : args.threads;
+  const std::string name = args.scene.scene.empty() ? "<builtin:room>" : args.scene.scene;
+  if (args.csv) {
+    std::printf("%s,%s,%d,%d,%d,%d,%.3f\n", name.c_str(), shadowref::name(method), threads, scene->width, scene->height,
+                args.frames, median(frameMs));
+    return kSuccess;
+  }
+  std::printf("%s, method %s, %dx%d, %d thread%s, %d frames\n", name.c_str(), shadowref::name(method), scene->width,
+              scene->height, threads, threads == 1 ? "" : "s", args.frames);
+  std::printf("  frame (median)            %9.3f ms\n", median(frameMs));
+  for (const std::string& pass : passOrder) std::printf("  %-25s %9.3f ms\n", pass.c_str(), median(passMs[pass]));
+  return kSuccess;
+}
+
+}  // namespace shadowref::cli
