@@ -38,7 +38,7 @@ Scene boxOnGround(int width, int height) {
   scene.materials.push_back(red);
   Light lamp;
   lamp.name = "lamp";
-  lamp.position = {2.0, 5.0, 1.0};
+  lamp.position = {-1.5, 4.0, -1.0};  // behind the box: its shadow falls towards the camera
   scene.lights.push_back(lamp);
   addObject(scene, "ground", makePlane({10.0, 10.0}, 0.1), glm::dmat4(1.0), 0);
   addObject(scene, "box", makeBox(glm::dvec3(1.0)), glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.5, 0.0)), 1);

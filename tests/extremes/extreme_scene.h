@@ -31,7 +31,7 @@ inline constexpr int kWidth = 160, kHeight = 128;
 size_t addObject(Scene& scene, const std::string& name, Mesh mesh, const glm::dmat4& local, int material = 0);
 
 // The base scene: a 10 x 10 ground slab with its top at y = 0, a unit box standing on it at the
-// origin, a point light at (2, 5, 1), the camera at (4, 3, 5) looking at (0, 0.5, 0), near 0.1,
+// origin, a point light at (-1.5, 4, -1), the camera at (4, 3, 5) looking at (0, 0.5, 0), near 0.1,
 // P_inf, z-fail. Two materials: 0 grey ground, 1 red box.
 Scene boxOnGround(int width = kWidth, int height = kHeight);
 
