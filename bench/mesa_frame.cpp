@@ -1,0 +1,471 @@
+#include "mesa_frame.h"
+
+#include <GL/osmesa.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "conformance/osmesa_harness.h"
+#include "raster/render_state.h"
+#include "shadow/facing.h"
+#include "shadow/light_view.h"
+#include "shadow/scene_passes.h"
+#include "shadow/scene_view.h"
+#include "shadow/shadow_method.h"
+#include "shadow/shadow_volume.h"
+#include "shadow/soft_lights.h"
+#include "shadow/stencil_counting.h"
+
+namespace shadowref::bench {
+
+namespace {
+
+// GL 1.5+ entry points, loaded like the conformance harness does (gl.h declares GL 1.1 only).
+struct GlFunctions {
+  PFNGLSTENCILFUNCSEPARATEPROC stencilFuncSeparate = nullptr;
+  PFNGLSTENCILOPSEPARATEPROC stencilOpSeparate = nullptr;
+  PFNGLSTENCILMASKSEPARATEPROC stencilMaskSeparate = nullptr;
+  PFNGLGENBUFFERSPROC genBuffers = nullptr;
+  PFNGLDELETEBUFFERSPROC deleteBuffers = nullptr;
+  PFNGLBINDBUFFERPROC bindBuffer = nullptr;
+  PFNGLBUFFERDATAPROC bufferData = nullptr;
+  PFNGLGENFRAMEBUFFERSPROC genFramebuffers = nullptr;
+  PFNGLDELETEFRAMEBUFFERSPROC deleteFramebuffers = nullptr;
+  PFNGLBINDFRAMEBUFFERPROC bindFramebuffer = nullptr;
+  PFNGLFRAMEBUFFERTEXTURE2DPROC framebufferTexture2D = nullptr;
+  PFNGLCHECKFRAMEBUFFERSTATUSPROC checkFramebufferStatus = nullptr;
+};
+
+template <class Fn>
+Fn load(const char* name) {
+  auto fn = reinterpret_cast<Fn>(OSMesaGetProcAddress(name));
+  if (!fn) throw std::runtime_error(std::string("OSMesa lacks ") + name);
+  return fn;
+}
+
+GlFunctions loadFunctions() {
+  GlFunctions gl;
+  gl.stencilFuncSeparate = load<PFNGLSTENCILFUNCSEPARATEPROC>("glStencilFuncSeparate");
+  gl.stencilOpSeparate = load<PFNGLSTENCILOPSEPARATEPROC>("glStencilOpSeparate");
+  gl.stencilMaskSeparate = load<PFNGLSTENCILMASKSEPARATEPROC>("glStencilMaskSeparate");
+  gl.genBuffers = load<PFNGLGENBUFFERSPROC>("glGenBuffers");
+  gl.deleteBuffers = load<PFNGLDELETEBUFFERSPROC>("glDeleteBuffers");
+  gl.bindBuffer = load<PFNGLBINDBUFFERPROC>("glBindBuffer");
+  gl.bufferData = load<PFNGLBUFFERDATAPROC>("glBufferData");
+  gl.genFramebuffers = load<PFNGLGENFRAMEBUFFERSPROC>("glGenFramebuffers");
+  gl.deleteFramebuffers = load<PFNGLDELETEFRAMEBUFFERSPROC>("glDeleteFramebuffers");
+  gl.bindFramebuffer = load<PFNGLBINDFRAMEBUFFERPROC>("glBindFramebuffer");
+  gl.framebufferTexture2D = load<PFNGLFRAMEBUFFERTEXTURE2DPROC>("glFramebufferTexture2D");
+  gl.checkFramebufferStatus = load<PFNGLCHECKFRAMEBUFFERSTATUSPROC>("glCheckFramebufferStatus");
+  return gl;
+}
+
+GLenum glCompare(CompareFunc f) {
+  static constexpr GLenum table[] = {GL_NEVER, GL_LESS, GL_EQUAL, GL_LEQUAL, GL_GREATER, GL_NOTEQUAL, GL_GEQUAL, GL_ALWAYS};
+  return table[size_t(f)];
+}
+
+GLenum glStencilOpOf(StencilOp op) {
+  static constexpr GLenum table[] = {GL_KEEP, GL_ZERO, GL_REPLACE, GL_INCR, GL_DECR, GL_INVERT, GL_INCR_WRAP, GL_DECR_WRAP};
+  return table[size_t(op)];
+}
+
+GLenum glBlendFactorOf(BlendFactor f) {
+  static constexpr GLenum table[] = {GL_ZERO,      GL_ONE,           GL_SRC_COLOR,          GL_ONE_MINUS_SRC_COLOR,
+                                     GL_DST_COLOR, GL_ONE_MINUS_DST_COLOR, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA,
+                                     GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA};
+  return table[size_t(f)];
+}
+
+void enable(GLenum cap, bool on) { on ? glEnable(cap) : glDisable(cap); }
+
+// The RenderState as GL state, field by field (as tests/conformance/osmesa_harness.cpp does).
+// clipFar has no GL counterpart: under P_inf the w = 0 points have z = w exactly and pass GL's
+// far-plane test z <= w.
+void applyState(const RenderState& s, const GlFunctions& gl) {
+  glViewport(s.viewport.x, s.viewport.y, s.viewport.width, s.viewport.height);
+  glDepthRange(s.viewport.nearVal, s.viewport.farVal);
+  enable(GL_SCISSOR_TEST, s.scissorTest);
+  enable(GL_CULL_FACE, s.cull != CullMode::None);
+  glCullFace(s.cull == CullMode::Front ? GL_FRONT : s.cull == CullMode::Back ? GL_BACK : GL_FRONT_AND_BACK);
+  glFrontFace(s.frontFace == FrontFace::CCW ? GL_CCW : GL_CW);
+  enable(GL_DEPTH_TEST, s.depthTest);
+  glDepthFunc(glCompare(s.depthFunc));
+  glDepthMask(s.depthWrite ? GL_TRUE : GL_FALSE);
+  enable(GL_POLYGON_OFFSET_FILL, s.polygonOffset.enabled);
+  glPolygonOffset(GLfloat(s.polygonOffset.factor), GLfloat(s.polygonOffset.units));
+  enable(GL_STENCIL_TEST, s.stencilTest);
+  const GLenum faces[2] = {GL_FRONT, GL_BACK};
+  for (int f = 0; f < 2; ++f) {
+    const StencilFaceState& st = s.stencil[size_t(f)];
+    gl.stencilFuncSeparate(faces[f], glCompare(st.func), st.ref, st.mask);
+    gl.stencilOpSeparate(faces[f], glStencilOpOf(st.sfail), glStencilOpOf(st.dpfail), glStencilOpOf(st.dppass));
+    gl.stencilMaskSeparate(faces[f], st.writeMask);
+  }
+  enable(GL_BLEND, s.blend.enabled);
+  glBlendFunc(glBlendFactorOf(s.blend.src), glBlendFactorOf(s.blend.dst));
+  glColorMask(s.colorMask[0], s.colorMask[1], s.colorMask[2], s.colorMask[3]);
+}
+
+void color4(GLenum face, GLenum what, const glm::dvec3& c) {
+  const GLfloat v[4] = {GLfloat(c.r), GLfloat(c.g), GLfloat(c.b), 1.0f};
+  glMaterialfv(face, what, v);
+}
+
+void setMaterial(const Material& m) {
+  color4(GL_FRONT_AND_BACK, GL_AMBIENT, m.ambient);
+  color4(GL_FRONT_AND_BACK, GL_DIFFUSE, m.diffuse);
+  color4(GL_FRONT_AND_BACK, GL_SPECULAR, m.specular);
+  color4(GL_FRONT_AND_BACK, GL_EMISSION, glm::dvec3(0.0));
+  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, GLfloat(std::clamp(m.shininess, 0.0, 128.0)));
+}
+
+void setGlobalAmbient(const glm::dvec3& a) {
+  const GLfloat v[4] = {GLfloat(a.r), GLfloat(a.g), GLfloat(a.b), 1.0f};
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, v);
+}
+
+// GL light `slot` as the scene's light; the modelview must be the camera's view matrix, so the
+// position and spot direction are given in world space (GL stores them in eye space).
+void setLight(int slot, const Light& light) {
+  const GLenum id = GLenum(GL_LIGHT0 + slot);
+  const glm::dvec4 p = light.homogeneous();
+  const GLfloat position[4] = {GLfloat(p.x), GLfloat(p.y), GLfloat(p.z), GLfloat(p.w)};
+  const GLfloat zero[4] = {0, 0, 0, 1};
+  const GLfloat c[4] = {GLfloat(light.color.r), GLfloat(light.color.g), GLfloat(light.color.b), 1.0f};
+  glLightfv(id, GL_POSITION, position);
+  glLightfv(id, GL_AMBIENT, zero);
+  glLightfv(id, GL_DIFFUSE, c);
+  glLightfv(id, GL_SPECULAR, c);
+  const bool directional = light.type == LightType::Directional;
+  glLightf(id, GL_CONSTANT_ATTENUATION, directional ? 1.0f : GLfloat(light.attenuation.x));
+  glLightf(id, GL_LINEAR_ATTENUATION, directional ? 0.0f : GLfloat(light.attenuation.y));
+  glLightf(id, GL_QUADRATIC_ATTENUATION, directional ? 0.0f : GLfloat(light.attenuation.z));
+  if (light.type == LightType::Spot) {
+    const GLfloat d[3] = {GLfloat(light.direction.x), GLfloat(light.direction.y), GLfloat(light.direction.z)};
+    glLightfv(id, GL_SPOT_DIRECTION, d);
+    glLightf(id, GL_SPOT_CUTOFF, GLfloat(std::min(light.spotCutoffDegrees, 90.0)));
+    glLightf(id, GL_SPOT_EXPONENT, GLfloat(std::clamp(light.spotExponent, 0.0, 128.0)));
+  } else {
+    glLightf(id, GL_SPOT_CUTOFF, 180.0f);
+  }
+  glEnable(id);
+}
+
+void disableLights() {
+  for (int i = 0; i < 8; ++i) glDisable(GLenum(GL_LIGHT0 + i));
+}
+
+void loadMatrix(GLenum mode, const glm::dmat4& m) {
+  glMatrixMode(mode);
+  glLoadMatrixd(&m[0][0]);  // glm is column-major like GL
+}
+
+// A mesh in vertex buffers (float, as a GL application would keep it): the render view with
+// normals for the scene passes, or positions only (the shadow mesh for the map pass).
+struct MeshBuffers {
+  GLuint positions = 0, normals = 0, indices = 0;
+  GLsizei indexCount = 0;
+};
+
+MeshBuffers upload(const GlFunctions& gl, const Mesh& mesh, bool withNormals) {
+  MeshBuffers b;
+  std::vector<GLfloat> data;
+  auto floats = [&](const std::vector<glm::dvec3>& v) {
+    data.clear();
+    for (const glm::dvec3& p : v) data.insert(data.end(), {GLfloat(p.x), GLfloat(p.y), GLfloat(p.z)});
+  };
+  gl.genBuffers(1, &b.positions);
+  floats(mesh.positions);
+  gl.bindBuffer(GL_ARRAY_BUFFER, b.positions);
+  gl.bufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(GLfloat)), data.data(), GL_STATIC_DRAW);
+  if (withNormals) {
+    gl.genBuffers(1, &b.normals);
+    floats(mesh.normals);
+    gl.bindBuffer(GL_ARRAY_BUFFER, b.normals);
+    gl.bufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(GLfloat)), data.data(), GL_STATIC_DRAW);
+  }
+  gl.genBuffers(1, &b.indices);
+  gl.bindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.indices);
+  gl.bufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)), mesh.triangles.data(),
+                GL_STATIC_DRAW);
+  b.indexCount = GLsizei(mesh.triangles.size() * 3);
+  gl.bindBuffer(GL_ARRAY_BUFFER, 0);
+  gl.bindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  return b;
+}
+
+Aabb sceneBounds(const std::vector<Instance>& instances) {
+  Aabb box;
+  for (const Instance& inst : instances) {
+    if (inst.worldBounds.empty()) continue;
+    box.add(inst.worldBounds.min);
+    box.add(inst.worldBounds.max);
+  }
+  return box;
+}
+
+}  // namespace
+
+struct MesaFrameRenderer::Impl {
+  const Scene& scene;
+  ShadowMethod method;
+  GlFunctions gl;
+  SceneView view;
+  std::vector<Instance> instances;
+  std::vector<MeshBuffers> render, shadow;  // per instance
+  std::vector<Light> lights;                 // soft lights expanded, as volume_renderer.cpp does
+  ShadowVolume volume;
+  ShadowVolumeWorkspace workspace;
+  GLuint mapTexture = 0, mapFramebuffer = 0;
+
+  Impl(const Scene& s, ShadowMethod m) : scene(s), method(m) {
+    // An empty scenario of the scene's size: the harness creates that context and leaves it
+    // current; every call below goes to it.
+    conformance::Scenario empty;
+    empty.name = "vs-mesa context";
+    empty.width = scene.width;
+    empty.height = scene.height;
+    conformance::renderWithMesa(empty);
+    gl = loadFunctions();
+    const bool volumes = method == ShadowMethod::ZPass || method == ShadowMethod::ZFail;
+    if (!volumes && method != ShadowMethod::ShadowMap)
+      throw std::runtime_error(std::string("vs-mesa: the GL side draws zpass, zfail and shadowmap, not ") + name(method));
+    view = makeCameraView(scene, volumes);
+    instances = scene.instances();
+    for (const Instance& inst : instances) {
+      render.push_back(upload(gl, *inst.mesh, true));
+      shadow.push_back(inst.shadowMesh ? upload(gl, *inst.shadowMesh, false) : MeshBuffers{});
+    }
+    for (const Light& light : scene.lights)
+      for (const Light& l : expandSoftLight(light)) lights.push_back(l);
+    if (method == ShadowMethod::ShadowMap) createShadowMap();
+
+    glDisable(GL_DITHER);
+    glShadeModel(GL_SMOOTH);
+    glEnable(GL_NORMALIZE);
+    glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);  // shadowref lights back faces with -N
+    glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, GL_TRUE);
+    glEnableClientState(GL_VERTEX_ARRAY);
+  }
+
+  ~Impl() {
+    for (auto* list : {&render, &shadow})
+      for (MeshBuffers& b : *list) {
+        const GLuint names[3] = {b.positions, b.normals, b.indices};
+        gl.deleteBuffers(3, names);
+      }
+    if (mapFramebuffer) gl.deleteFramebuffers(1, &mapFramebuffer);
+    if (mapTexture) glDeleteTextures(1, &mapTexture);
+  }
+
+  void createShadowMap() {
+    for (const Light& l : lights)
+      if (l.type == LightType::Point)
+        throw std::runtime_error("vs-mesa: the GL side has no cube shadow maps (point light '" + l.name + "')");
+    if (lights.size() != 1) throw std::runtime_error("vs-mesa: the GL shadow-map frame takes exactly one light");
+    const int size = scene.shadow.mapSize;
+    glGenTextures(1, &mapTexture);
+    glBindTexture(GL_TEXTURE_2D, mapTexture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_R_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_LUMINANCE);
+    gl.genFramebuffers(1, &mapFramebuffer);
+    gl.bindFramebuffer(GL_FRAMEBUFFER, mapFramebuffer);
+    gl.framebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, mapTexture, 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    if (gl.checkFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("vs-mesa: the shadow-map framebuffer object is incomplete");
+    gl.bindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+
+  // Draws instance i's render mesh (with normals when lit) or its shadow mesh.
+  void drawMesh(const MeshBuffers& b, const RenderState& state, const Instance& inst, bool withNormals) {
+    RenderState mirrored;
+    applyState(stateFor(state, inst, mirrored), gl);
+    gl.bindBuffer(GL_ARRAY_BUFFER, b.positions);
+    glVertexPointer(3, GL_FLOAT, 0, nullptr);
+    if (withNormals) {
+      glEnableClientState(GL_NORMAL_ARRAY);
+      gl.bindBuffer(GL_ARRAY_BUFFER, b.normals);
+      glNormalPointer(GL_FLOAT, 0, nullptr);
+    } else {
+      glDisableClientState(GL_NORMAL_ARRAY);
+    }
+    gl.bindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.indices);
+    glDrawElements(GL_TRIANGLES, b.indexCount, GL_UNSIGNED_INT, nullptr);
+    gl.bindBuffer(GL_ARRAY_BUFFER, 0);
+    gl.bindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  }
+
+  // drawLit of scene_passes.cpp: every instance lit by `lit` (those in range), ambient or not.
+  void drawLitPass(const RenderState& state, const std::vector<const Light*>& lit, bool includeAmbient) {
+    glEnable(GL_LIGHTING);
+    setGlobalAmbient(includeAmbient ? scene.ambient : glm::dvec3(0.0));
+    for (size_t i = 0; i < instances.size(); ++i) {
+      const Instance& inst = instances[i];
+      loadMatrix(GL_MODELVIEW, view.view);
+      disableLights();
+      int slot = 0;
+      for (const Light* l : lit)
+        if (withinRange(*l, inst.worldBounds) && slot < 8) setLight(slot++, *l);
+      if (!includeAmbient && slot == 0) continue;
+      setMaterial(scene.materials.at(size_t(inst.material)));
+      loadMatrix(GL_MODELVIEW, view.view * inst.world);
+      drawMesh(render[i], state, inst, true);
+    }
+    glDisable(GL_LIGHTING);
+  }
+
+  void drawVolumeParts(const RenderState& state, const Instance& inst) {
+    RenderState mirrored;
+    applyState(stateFor(state, inst, mirrored), gl);
+    glVertexPointer(4, GL_DOUBLE, 0, volume.positions.data());
+    for (VolumePart part : {VolumePart::Side, VolumePart::FrontCap, VolumePart::BackCap}) {
+      const std::vector<glm::uvec3>& t = volume.part(part);
+      if (!t.empty()) glDrawElements(GL_TRIANGLES, GLsizei(t.size() * 3), GL_UNSIGNED_INT, t.data());
+    }
+  }
+
+  // Step 2 of volume_renderer.cpp: every caster's volume, rebuilt for this light this frame.
+  void drawVolumePass(const RenderState& base, const Light& light) {
+    const StencilCounting how = method == ShadowMethod::ZFail ? StencilCounting::ZFail : StencilCounting::ZPass;
+    const std::vector<RenderState> states =
+        volumePassStates(base, how, CountingOptions{scene.shadow.twoSidedStencil, scene.shadow.wrapOps});
+    glDisableClientState(GL_NORMAL_ARRAY);
+    for (const Instance& inst : instances) {
+      if (!inst.shadowMesh || !withinRange(light, inst.shadowBounds)) continue;
+      buildShadowVolume(*inst.shadowMesh, lightInObjectSpace(inst.world, light.homogeneous()), scene.shadow.silhouette,
+                        how == StencilCounting::ZFail, volume, &workspace);
+      loadMatrix(GL_MODELVIEW, view.view * inst.world);
+      for (const RenderState& s : states) drawVolumeParts(s, inst);
+    }
+  }
+
+  void renderVolumes() {
+    loadMatrix(GL_PROJECTION, view.projection);
+    RenderState base;
+    base.viewport = view.viewport;
+    base.clipFar = false;
+    base.cull = CullMode::Back;
+    base.depthTest = true;
+    base.depthFunc = CompareFunc::Less;
+    applyState(base, gl);
+    glClearColor(GLfloat(scene.background.r), GLfloat(scene.background.g), GLfloat(scene.background.b), 1.0f);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    drawLitPass(base, {}, true);
+
+    RenderState composite = base;
+    composite.depthFunc = CompareFunc::LEqual;
+    composite.depthWrite = false;
+    composite.stencilTest = true;
+    for (StencilFaceState& s : composite.stencil) {
+      s.func = CompareFunc::Equal;
+      s.ref = 0;
+    }
+    composite.blend = {true, BlendFactor::One, BlendFactor::One};
+    for (const Light& light : lights) {
+      applyState(base, gl);
+      glClearStencil(0);
+      glClear(GL_STENCIL_BUFFER_BIT);
+      drawVolumePass(base, light);
+      drawLitPass(composite, {&light}, false);
+    }
+  }
+
+  void renderShadowMap() {
+    const Light& light = lights.front();
+    const LightView lv = shadowLightView(light, sceneBounds(instances));
+    const int size = scene.shadow.mapSize;
+    // Step 1: depth from the light (shadow_map_renderer.cpp renderDepthMap).
+    RenderState map;
+    map.viewport = Viewport{0, 0, size, size, 0.0, 1.0};
+    map.depthTest = true;
+    map.depthFunc = CompareFunc::Less;
+    map.colorMask = {false, false, false, false};
+    map.cull = scene.shadow.backFacesOnly ? CullMode::Front : CullMode::None;
+    map.polygonOffset = {scene.shadow.offsetFactor != 0.0 || scene.shadow.offsetUnits != 0.0, scene.shadow.offsetFactor,
+                         scene.shadow.offsetUnits};
+    gl.bindFramebuffer(GL_FRAMEBUFFER, mapFramebuffer);
+    applyState(map, gl);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    loadMatrix(GL_PROJECTION, lv.projection);
+    glDisableClientState(GL_NORMAL_ARRAY);
+    for (size_t i = 0; i < instances.size(); ++i) {
+      const Instance& inst = instances[i];
+      if (!inst.shadowMesh || !withinRange(light, inst.shadowBounds)) continue;
+      loadMatrix(GL_MODELVIEW, lv.view * inst.world);
+      drawMesh(shadow[i], map, inst, false);
+    }
+    gl.bindFramebuffer(GL_FRAMEBUFFER, 0);
+
+    // Step 2: the camera pass, lit and modulated by the depth compare through T = bias · P · V
+    // applied to world positions: EYE_LINEAR texgen with identity planes given under the camera's
+    // view matrix yields world coordinates.
+    RenderState camera;
+    camera.viewport = view.viewport;
+    camera.cull = CullMode::Back;
+    camera.depthTest = true;
+    camera.depthFunc = CompareFunc::Less;
+    applyState(camera, gl);
+    glClearColor(GLfloat(scene.background.r), GLfloat(scene.background.g), GLfloat(scene.background.b), 1.0f);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    loadMatrix(GL_PROJECTION, view.projection);
+    loadMatrix(GL_TEXTURE, textureMatrix(lv));
+    loadMatrix(GL_MODELVIEW, view.view);
+    const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
+    const GLenum gens[4] = {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q};
+    for (int k = 0; k < 4; ++k) {
+      GLdouble plane[4] = {0, 0, 0, 0};
+      plane[k] = 1.0;
+      glTexGeni(coords[k], GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+      glTexGendv(coords[k], GL_EYE_PLANE, plane);
+      glEnable(gens[k]);
+    }
+    glBindTexture(GL_TEXTURE_2D, mapTexture);
+    glEnable(GL_TEXTURE_2D);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    drawLitPass(camera, {&light}, true);
+    glDisable(GL_TEXTURE_2D);
+    for (GLenum g : gens) glDisable(g);
+    loadMatrix(GL_TEXTURE, glm::dmat4(1.0));
+  }
+};
+
+MesaFrameRenderer::MesaFrameRenderer(const Scene& scene, ShadowMethod method)
+    : impl_(std::make_unique<Impl>(scene, method)) {}
+
+MesaFrameRenderer::~MesaFrameRenderer() = default;
+
+void MesaFrameRenderer::render() {
+  if (impl_->method == ShadowMethod::ShadowMap) impl_->renderShadowMap();
+  else impl_->renderVolumes();
+  glFinish();
+  if (glGetError() != GL_NO_ERROR) throw std::runtime_error("vs-mesa: GL error in the frame");
+}
+
+Framebuffer MesaFrameRenderer::readColor() const {
+  const Scene& scene = impl_->scene;
+  Framebuffer fb(scene.width, scene.height);
+  fb.ensureColor();
+  std::vector<unsigned char> rgba(size_t(scene.width) * size_t(scene.height) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, scene.width, scene.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  for (size_t i = 0; i < fb.color().size(); ++i)
+    fb.color()[i] = glm::vec4(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2], rgba[4 * i + 3]) / 255.0f;
+  return fb;
+}
+
+}  // namespace shadowref::bench

@@ -1,0 +1,381 @@
+// bench/vs-mesa (issue 7): the same frames through Mesa's software rasterizers (OSMesa, softpipe
+// and llvmpipe) and through shadowref, side by side in one run; the ratios, the determinism check
+// across thread counts, and the cost against the number of houses and lights.
+//
+// Every timed run is a child process (this program with --worker): Mesa picks its driver
+// (GALLIUM_DRIVER) and llvmpipe its thread count (LP_NUM_THREADS) once per process, and a fresh
+// process gives every configuration the same start. Runs alternate between the configurations,
+// round by round in A B C … C B A order, because llvmpipe's timings jump between runs; each run
+// reports the median of its frames, each configuration the median of its runs.
+//
+//   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include "bench_stats.h"
+#include "conformance/osmesa_harness.h"
+#include "image/image_writer.h"
+#include "mesa_frame.h"
+#include "scene/scene_loader.h"
+#include "shadow/frame_renderer.h"
+
+namespace shadowref::bench {
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// What is measured.
+
+struct SceneCase {
+  std::string label;
+  std::string file;  // relative to the source tree
+  std::vector<std::string> overrides;
+  int houses = 0, lights = 0;  // for the scaling sections
+};
+
+std::vector<SceneCase> comparedScenes() {
+  return {
+      {"room", "scenes/room.yaml", {"shadow.method=zfail"}},
+      {"pumpkins", "scenes/pumpkins.yaml", {"shadow.method=zfail"}},
+      {"city-64", "scenes/city.yaml", {"shadow.method=zfail", "generator.houses=64"}},
+      {"outdoor-sm2048", "scenes/outdoor.yaml", {"shadow.method=shadowmap", "shadow.map_size=2048"}},
+  };
+}
+
+SceneCase cityCase(int houses, int lights) {
+  SceneCase c{"city", "scenes/city.yaml",
+              {"shadow.method=zfail", "generator.houses=" + std::to_string(houses),
+               "generator.lights=" + std::to_string(lights)}};
+  c.label = "city-h" + std::to_string(houses) + "-l" + std::to_string(lights);
+  c.houses = houses;
+  c.lights = lights;
+  return c;
+}
+
+enum class Engine { Shadowref, Llvmpipe, Softpipe };
+
+struct Config {
+  Engine engine;
+  int threads;
+  std::string name() const {
+    const char* e = engine == Engine::Shadowref ? "shadowref" : engine == Engine::Llvmpipe ? "llvmpipe" : "softpipe";
+    return std::string(e) + "-" + std::to_string(threads) + "t";
+  }
+  const char* engineName() const {
+    return engine == Engine::Shadowref ? "shadowref" : engine == Engine::Llvmpipe ? "llvmpipe" : "softpipe";
+  }
+};
+
+Scene loadCase(const SceneCase& c) {
+  LoadOptions options;
+  options.overrides = c.overrides;
+  return loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/" + c.file, options);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The worker: one configuration, one scene, a warm-up frame and `frames` timed frames, each time
+// printed in milliseconds on one line.
+
+int runWorker(const std::string& engine, int threads, int frames, const SceneCase& c) {
+  const Scene scene = loadCase(c);
+  std::vector<double> ms;
+  auto timed = [&](auto&& frame) {
+    frame();  // warm-up: page in buffers, JIT llvmpipe's shaders
+    for (int i = 0; i < frames; ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      frame();
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+  };
+  // VS_MESA_SNAPSHOT=file.png: the last frame's colour, to check by eye that both draw the same.
+  const char* snapshot = std::getenv("VS_MESA_SNAPSHOT");
+  if (engine == "shadowref") {
+    FrameOptions options;
+    options.threads = threads;
+    std::optional<FrameResult> last;
+    timed([&] { last = renderFrame(scene, options); });
+    if (snapshot) writePng(last->framebuffer, snapshot);
+    std::printf("# shadowref %d threads\n", threads);
+  } else {
+    MesaFrameRenderer mesa(scene, scene.shadow.method);
+    timed([&] { mesa.render(); });
+    if (snapshot) writePng(mesa.readColor(), snapshot);
+    std::printf("# %s\n", conformance::mesaRenderer().c_str());
+  }
+  for (double m : ms) std::printf("%.4f ", m);
+  std::printf("\n");
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The driver side.
+
+std::string selfPath() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) throw std::runtime_error("cannot find /proc/self/exe");
+  return std::string(buf, size_t(n));
+}
+
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return q + "'";
+}
+
+struct RunResult {
+  std::string renderer;
+  std::vector<double> frameMs;
+};
+
+RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
+  std::string cmd;
+  if (cfg.engine == Engine::Llvmpipe)
+    cmd = "GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=" + std::to_string(cfg.threads) + " ";
+  else if (cfg.engine == Engine::Softpipe)
+    cmd = "GALLIUM_DRIVER=softpipe ";
+  cmd += quoted(selfPath()) + " --worker " + cfg.engineName() + " " + std::to_string(cfg.threads) + " " +
+         std::to_string(frames) + " " + quoted(c.file);
+  for (const std::string& o : c.overrides) cmd += " " + quoted(o);
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) throw std::runtime_error("popen failed: " + cmd);
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  if (pclose(pipe) != 0) throw std::runtime_error("worker failed: " + cmd);
+  RunResult r;
+  std::istringstream lines(out);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("# ", 0) == 0) {
+      r.renderer = line.substr(2);
+      continue;
+    }
+    std::istringstream values(line);
+    for (double v; values >> v;) r.frameMs.push_back(v);
+  }
+  if (r.frameMs.empty()) throw std::runtime_error("worker printed no times: " + cmd);
+  return r;
+}
+
+struct Measured {
+  std::vector<double> runMedians;
+  std::string renderer;
+  double median() const { return bench::median(runMedians); }
+  double min() const { return *std::min_element(runMedians.begin(), runMedians.end()); }
+  double max() const { return *std::max_element(runMedians.begin(), runMedians.end()); }
+};
+
+struct Settings {
+  int rounds = 5;
+  int frames = 5;          // per run; softpipe gets fewer (it takes 10x as long)
+  std::string csvPath = std::string(SHADOWREF_SOURCE_DIR) + "/bench/results/vs-mesa.csv";
+  bool scaling = true;
+  bool quick = false;
+};
+
+// Rounds of alternating runs: A B C … then … C B A, so slow drift hits every configuration alike.
+std::vector<Measured> measure(const SceneCase& c, const std::vector<Config>& configs, const Settings& s) {
+  std::vector<Measured> m(configs.size());
+  for (int round = 0; round < s.rounds; ++round) {
+    for (size_t k = 0; k < configs.size(); ++k) {
+      const size_t i = round % 2 == 0 ? k : configs.size() - 1 - k;
+      const int frames = configs[i].engine == Engine::Softpipe ? std::max(1, s.frames / 3) : s.frames;
+      const RunResult r = runChild(configs[i], frames, c);
+      m[i].runMedians.push_back(median(r.frameMs));
+      m[i].renderer = r.renderer;
+    }
+    std::fprintf(stderr, ".");
+  }
+  return m;
+}
+
+std::ofstream openCsv(const std::string& path) {
+  std::ofstream csv(path);
+  if (!csv) throw std::runtime_error("cannot write " + path);
+  csv << "section,scene,houses,lights,engine,threads,runs,median_ms,min_ms,max_ms,renderer\n";
+  return csv;
+}
+
+void csvRow(std::ofstream& csv, const std::string& section, const SceneCase& c, const Config& cfg, const Measured& m) {
+  csv << section << ',' << c.label << ',' << c.houses << ',' << c.lights << ',' << cfg.engineName() << ','
+      << cfg.threads << ',' << m.runMedians.size() << ',' << m.median() << ',' << m.min() << ',' << m.max() << ",\""
+      << m.renderer << "\"\n";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Determinism: every buffer byte-identical for 1, 2 and 8 threads.
+
+template <class T>
+bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+bool identicalFrames(const Framebuffer& a, const Framebuffer& b) {
+  return sameBytes(a.color(), b.color()) && sameBytes(a.depthCodes(), b.depthCodes()) &&
+         sameBytes(a.stencil(), b.stencil()) && sameBytes(a.accum(), b.accum());
+}
+
+bool checkDeterminism(const std::vector<SceneCase>& cases, std::ofstream& csv) {
+  std::printf("\nDeterminism: every buffer (colour, depth, stencil, accumulation) of 2 and 8 threads against 1\n");
+  bool all = true;
+  for (const SceneCase& c : cases) {
+    const Scene scene = loadCase(c);
+    FrameOptions options;
+    options.threads = 1;
+    const FrameResult one = renderFrame(scene, options);
+    std::printf("  %-16s", c.label.c_str());
+    for (int threads : {2, 8}) {
+      options.threads = threads;
+      const bool same = identicalFrames(one.framebuffer, renderFrame(scene, options).framebuffer);
+      all = all && same;
+      std::printf("  %d threads: %s", threads, same ? "identical" : "DIFFERENT");
+      csv << "determinism," << c.label << ',' << c.houses << ',' << c.lights << ",shadowref," << threads << ",1,"
+          << (same ? "identical" : "different") << ",,,\n";
+    }
+    std::printf("\n");
+  }
+  return all;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reports.
+
+std::string cpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+void compareScenes(const Settings& s, std::ofstream& csv) {
+  const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1},
+                                       {Engine::Llvmpipe, 2},  {Engine::Softpipe, 1}};
+  std::printf("\nTime per frame at 800x640, median of %d alternating runs of %d frames (softpipe %d), in ms;\n"
+              "ratios are speed ratios (Mesa's time / shadowref's time: above 1 shadowref is faster)\n\n",
+              s.rounds, s.frames, std::max(1, s.frames / 3));
+  std::printf("%-16s %9s %9s %9s %9s %9s | %8s %8s %8s %8s\n", "scene", "sr-1t", "sr-2t", "llvm-1t", "llvm-2t",
+              "softpipe", "vsLlvm1", "vsLlvm2", "vsSoft", "sr 2t/1t");
+  std::string renderers;
+  for (const SceneCase& c : comparedScenes()) {
+    const std::vector<Measured> m = measure(c, configs, s);
+    for (size_t i = 0; i < configs.size(); ++i) csvRow(csv, "compare", c, configs[i], m[i]);
+    const double sr1 = m[0].median(), sr2 = m[1].median(), ll1 = m[2].median(), ll2 = m[3].median(),
+                 soft = m[4].median();
+    std::printf("\r%-16s %9.2f %9.2f %9.2f %9.2f %9.1f | %8.2f %8.2f %8.1f %8.2f\n", c.label.c_str(), sr1, sr2, ll1,
+                ll2, soft, ll1 / sr1, ll2 / sr2, soft / sr1, sr1 / sr2);
+    std::printf("%-16s %9s %9s %9s %9s %9s   (range of run medians)\n", "",
+                (std::to_string(int(m[0].min())) + "-" + std::to_string(int(m[0].max()))).c_str(),
+                (std::to_string(int(m[1].min())) + "-" + std::to_string(int(m[1].max()))).c_str(),
+                (std::to_string(int(m[2].min())) + "-" + std::to_string(int(m[2].max()))).c_str(),
+                (std::to_string(int(m[3].min())) + "-" + std::to_string(int(m[3].max()))).c_str(),
+                (std::to_string(int(m[4].min())) + "-" + std::to_string(int(m[4].max()))).c_str());
+    renderers = m[2].renderer + "; " + m[4].renderer;
+    std::fflush(stdout);
+  }
+  std::printf("Mesa: %s\n", renderers.c_str());
+}
+
+void scaling(const Settings& s, std::ofstream& csv) {
+  const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1}};
+  Settings fewer = s;
+  fewer.rounds = std::max(1, s.rounds / 2 + 1);
+  fewer.frames = std::max(1, s.frames / 2 + 1);
+  struct Series {
+    std::string title, axis;
+    std::vector<SceneCase> cases;
+    std::vector<double> x;
+  };
+  std::vector<Series> series(2);
+  series[0] = {"Houses (city, z-fail, 1 light)", "houses", {}, {}};
+  for (int h : s.quick ? std::vector<int>{8, 32, 100} : std::vector<int>{8, 16, 32, 48, 64, 80, 100}) {
+    series[0].cases.push_back(cityCase(h, 1));
+    series[0].x.push_back(h);
+  }
+  series[1] = {"Lights (city-64, z-fail)", "lights", {}, {}};
+  for (int l : s.quick ? std::vector<int>{1, 4, 9} : std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9}) {
+    series[1].cases.push_back(cityCase(64, l));
+    series[1].x.push_back(l);
+  }
+  for (const Series& ser : series) {
+    std::printf("\n%s: ms per frame, median of %d alternating runs of %d frames\n", ser.title.c_str(), fewer.rounds,
+                fewer.frames);
+    std::printf("%8s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t");
+    std::vector<std::vector<double>> y(configs.size());
+    for (size_t i = 0; i < ser.cases.size(); ++i) {
+      const std::vector<Measured> m = measure(ser.cases[i], configs, fewer);
+      for (size_t k = 0; k < configs.size(); ++k) {
+        csvRow(csv, ser.axis, ser.cases[i], configs[k], m[k]);
+        y[k].push_back(m[k].median());
+      }
+      std::printf("\r%8g %9.2f %9.2f %9.2f\n", ser.x[i], y[0].back(), y[1].back(), y[2].back());
+      std::fflush(stdout);
+    }
+    std::printf("%8s", "fit");
+    for (size_t k = 0; k < configs.size(); ++k) {
+      const LineFit f = fitLine(ser.x, y[k]);
+      std::printf("  %s: %.2f + %.3f/%s, R2 %.4f", configs[k].name().c_str(), f.intercept, f.slope,
+                  ser.axis == "houses" ? "house" : "light", f.r2);
+    }
+    std::printf("\n");
+  }
+}
+
+int runDriver(const Settings& s) {
+  std::printf("bench/vs-mesa: shadowref against Mesa through OSMesa\n");
+  std::printf("machine: %u hardware threads, %s\n", std::thread::hardware_concurrency(), cpuModel().c_str());
+  std::ofstream csv = openCsv(s.csvPath);
+  compareScenes(s, csv);
+  const bool deterministic = checkDeterminism(comparedScenes(), csv);
+  if (s.scaling) scaling(s, csv);
+  std::printf("\nCSV: %s\n", s.csvPath.c_str());
+  return deterministic ? 0 : 1;
+}
+
+}  // namespace
+
+}  // namespace shadowref::bench
+
+int main(int argc, char** argv) {
+  using namespace shadowref::bench;
+  try {
+    if (argc >= 6 && std::strcmp(argv[1], "--worker") == 0) {
+      SceneCase c{"worker", argv[5], {}};
+      for (int i = 6; i < argc; ++i) c.overrides.push_back(argv[i]);
+      return runWorker(argv[2], std::atoi(argv[3]), std::atoi(argv[4]), c);
+    }
+    Settings s;
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto next = [&]() -> std::string {
+        if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+        return argv[++i];
+      };
+      if (a == "--rounds") s.rounds = std::max(1, std::stoi(next()));
+      else if (a == "--frames") s.frames = std::max(1, std::stoi(next()));
+      else if (a == "--csv") s.csvPath = next();
+      else if (a == "--no-scaling") s.scaling = false;
+      else if (a == "--quick") s.quick = true;
+      else {
+        std::fprintf(stderr, "usage: vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]\n");
+        return 2;
+      }
+    }
+    return runDriver(s);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vs_mesa: %s\n", e.what());
+    return 1;
+  }
+}
