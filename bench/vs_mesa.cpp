@@ -11,6 +11,7 @@
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]
 #include <array>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -88,15 +89,23 @@ Scene loadCase(const SceneCase& c) {
 // The worker: one configuration, one scene, a warm-up frame and `frames` timed frames, each time
 // printed in milliseconds on one line.
 
+double cpuMilliseconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 int runWorker(const std::string& engine, int threads, int frames, const SceneCase& c) {
   const Scene scene = loadCase(c);
-  std::vector<double> ms;
+  std::vector<double> wallMs, cpuMs;
   auto timed = [&](auto&& frame) {
     frame();  // warm-up: page in buffers, JIT llvmpipe's shaders
     for (int i = 0; i < frames; ++i) {
+      const double cpu0 = cpuMilliseconds();
       const auto start = std::chrono::steady_clock::now();
       frame();
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      cpuMs.push_back(cpuMilliseconds() - cpu0);
     }
   };
   // VS_MESA_SNAPSHOT=file.png: the last frame's colour, to check by eye that both draw the same.
@@ -114,7 +123,10 @@ int runWorker(const std::string& engine, int threads, int frames, const SceneCas
     if (snapshot) writePng(mesa.readColor(), snapshot);
     std::printf("# %s\n", conformance::mesaRenderer().c_str());
   }
-  for (double m : ms) std::printf("%.4f ", m);
+  std::printf("W");
+  for (double m : wallMs) std::printf(" %.4f", m);
+  std::printf("\nC");
+  for (double m : cpuMs) std::printf(" %.4f", m);
   std::printf("\n");
   return 0;
 }
@@ -137,7 +149,8 @@ std::string quoted(const std::string& s) {
 
 struct RunResult {
   std::string renderer;
-  std::vector<double> frameMs;
+  std::vector<double> frameMs;  // wall clock
+  std::vector<double> cpuMs;    // CPU time of the whole process (all its threads)
 };
 
 RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
@@ -163,8 +176,9 @@ RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
       r.renderer = line.substr(2);
       continue;
     }
-    std::istringstream values(line);
-    for (double v; values >> v;) r.frameMs.push_back(v);
+    std::istringstream values(line.size() > 1 ? line.substr(1) : std::string());
+    std::vector<double>& into = line[0] == 'C' ? r.cpuMs : r.frameMs;
+    for (double v; values >> v;) into.push_back(v);
   }
   if (r.frameMs.empty()) throw std::runtime_error("worker printed no times: " + cmd);
   return r;
@@ -172,8 +186,10 @@ RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
 
 struct Measured {
   std::vector<double> runMedians;
+  std::vector<double> cpuRunMedians;
   std::string renderer;
   double median() const { return bench::median(runMedians); }
+  double cpuMedian() const { return bench::median(cpuRunMedians); }
   double min() const { return *std::min_element(runMedians.begin(), runMedians.end()); }
   double max() const { return *std::max_element(runMedians.begin(), runMedians.end()); }
 };
@@ -195,6 +211,7 @@ std::vector<Measured> measure(const SceneCase& c, const std::vector<Config>& con
       const int frames = configs[i].engine == Engine::Softpipe ? std::max(1, s.frames / 3) : s.frames;
       const RunResult r = runChild(configs[i], frames, c);
       m[i].runMedians.push_back(median(r.frameMs));
+      m[i].cpuRunMedians.push_back(median(r.cpuMs));
       m[i].renderer = r.renderer;
     }
     std::fprintf(stderr, ".");
@@ -205,13 +222,13 @@ std::vector<Measured> measure(const SceneCase& c, const std::vector<Config>& con
 std::ofstream openCsv(const std::string& path) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write " + path);
-  csv << "section,scene,houses,lights,engine,threads,runs,median_ms,min_ms,max_ms,renderer\n";
+  csv << "section,scene,houses,lights,engine,threads,runs,median_ms,min_ms,max_ms,cpu_median_ms,renderer\n";
   return csv;
 }
 
 void csvRow(std::ofstream& csv, const std::string& section, const SceneCase& c, const Config& cfg, const Measured& m) {
   csv << section << ',' << c.label << ',' << c.houses << ',' << c.lights << ',' << cfg.engineName() << ','
-      << cfg.threads << ',' << m.runMedians.size() << ',' << m.median() << ',' << m.min() << ',' << m.max() << ",\""
+      << cfg.threads << ',' << m.runMedians.size() << ',' << m.median() << ',' << m.min() << ',' << m.max() << ',' << m.cpuMedian() << ",\""
       << m.renderer << "\"\n";
 }
 
@@ -243,7 +260,7 @@ bool checkDeterminism(const std::vector<SceneCase>& cases, std::ofstream& csv) {
       all = all && same;
       std::printf("  %d threads: %s", threads, same ? "identical" : "DIFFERENT");
       csv << "determinism," << c.label << ',' << c.houses << ',' << c.lights << ",shadowref," << threads << ",1,"
-          << (same ? "identical" : "different") << ",,,\n";
+          << (same ? "identical" : "different") << ",,,,\n";
     }
     std::printf("\n");
   }
@@ -260,6 +277,19 @@ std::string cpuModel() {
   return "unknown";
 }
 
+std::string range(const Measured& m) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.0f-%.0f", m.min(), m.max());
+  return buf;
+}
+
+std::string loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  in >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
 void compareScenes(const Settings& s, std::ofstream& csv) {
   const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1},
                                        {Engine::Llvmpipe, 2},  {Engine::Softpipe, 1}};
@@ -269,23 +299,34 @@ void compareScenes(const Settings& s, std::ofstream& csv) {
   std::printf("%-16s %9s %9s %9s %9s %9s | %8s %8s %8s %8s\n", "scene", "sr-1t", "sr-2t", "llvm-1t", "llvm-2t",
               "softpipe", "vsLlvm1", "vsLlvm2", "vsSoft", "sr 2t/1t");
   std::string renderers;
+  std::vector<std::vector<Measured>> all;
   for (const SceneCase& c : comparedScenes()) {
     const std::vector<Measured> m = measure(c, configs, s);
+    all.push_back(m);
     for (size_t i = 0; i < configs.size(); ++i) csvRow(csv, "compare", c, configs[i], m[i]);
     const double sr1 = m[0].median(), sr2 = m[1].median(), ll1 = m[2].median(), ll2 = m[3].median(),
                  soft = m[4].median();
-    std::printf("\r%-16s %9.2f %9.2f %9.2f %9.2f %9.1f | %8.2f %8.2f %8.1f %8.2f\n", c.label.c_str(), sr1, sr2, ll1,
+    std::printf("\r%-16s %9.2f %9.2f %9.2f %9.2f %9.1f | %8.3f %8.3f %8.2f %8.2f\n", c.label.c_str(), sr1, sr2, ll1,
                 ll2, soft, ll1 / sr1, ll2 / sr2, soft / sr1, sr1 / sr2);
-    std::printf("%-16s %9s %9s %9s %9s %9s   (range of run medians)\n", "",
-                (std::to_string(int(m[0].min())) + "-" + std::to_string(int(m[0].max()))).c_str(),
-                (std::to_string(int(m[1].min())) + "-" + std::to_string(int(m[1].max()))).c_str(),
-                (std::to_string(int(m[2].min())) + "-" + std::to_string(int(m[2].max()))).c_str(),
-                (std::to_string(int(m[3].min())) + "-" + std::to_string(int(m[3].max()))).c_str(),
-                (std::to_string(int(m[4].min())) + "-" + std::to_string(int(m[4].max()))).c_str());
+    std::printf("%-16s %9s %9s %9s %9s %9s   (lowest-highest run median)\n", "", range(m[0]).c_str(),
+                range(m[1]).c_str(), range(m[2]).c_str(), range(m[3]).c_str(), range(m[4]).c_str());
     renderers = m[2].renderer + "; " + m[4].renderer;
     std::fflush(stdout);
   }
   std::printf("Mesa: %s\n", renderers.c_str());
+  // On a shared machine the wall clock carries other processes' load; the process CPU time of the
+  // single-threaded runs does not (much), so it is the steadier comparison of work per frame.
+  std::printf("\nCPU time per frame (whole process, all threads), ms; single-thread speed ratios\n\n");
+  std::printf("%-16s %9s %9s %9s %9s %9s | %8s %8s\n", "scene", "sr-1t", "sr-2t", "llvm-1t", "llvm-2t", "softpipe",
+              "vsLlvm1", "vsSoft");
+  const std::vector<SceneCase> cases = comparedScenes();
+  for (size_t k = 0; k < all.size(); ++k) {
+    const std::vector<Measured>& m = all[k];
+    std::printf("%-16s %9.2f %9.2f %9.2f %9.2f %9.1f | %8.3f %8.2f\n", cases[k].label.c_str(), m[0].cpuMedian(),
+                m[1].cpuMedian(), m[2].cpuMedian(), m[3].cpuMedian(), m[4].cpuMedian(),
+                m[2].cpuMedian() / m[0].cpuMedian(), m[4].cpuMedian() / m[0].cpuMedian());
+  }
+  std::printf("load average after the runs: %s\n", loadAverage().c_str());
 }
 
 void scaling(const Settings& s, std::ofstream& csv) {
@@ -312,30 +353,37 @@ void scaling(const Settings& s, std::ofstream& csv) {
   for (const Series& ser : series) {
     std::printf("\n%s: ms per frame, median of %d alternating runs of %d frames\n", ser.title.c_str(), fewer.rounds,
                 fewer.frames);
-    std::printf("%8s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t");
-    std::vector<std::vector<double>> y(configs.size());
+    std::printf("%8s %9s %9s %9s   %3s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "", "sr-1t",
+                "sr-2t", "llvm-1t");
+    std::vector<std::vector<double>> y(configs.size()), yCpu(configs.size());
     for (size_t i = 0; i < ser.cases.size(); ++i) {
       const std::vector<Measured> m = measure(ser.cases[i], configs, fewer);
       for (size_t k = 0; k < configs.size(); ++k) {
         csvRow(csv, ser.axis, ser.cases[i], configs[k], m[k]);
         y[k].push_back(m[k].median());
+        yCpu[k].push_back(m[k].cpuMedian());
       }
-      std::printf("\r%8g %9.2f %9.2f %9.2f\n", ser.x[i], y[0].back(), y[1].back(), y[2].back());
+      std::printf("\r%8g %9.2f %9.2f %9.2f   cpu %9.2f %9.2f %9.2f\n", ser.x[i], y[0].back(), y[1].back(),
+                  y[2].back(), m[0].cpuMedian(), m[1].cpuMedian(), m[2].cpuMedian());
       std::fflush(stdout);
     }
-    std::printf("%8s", "fit");
-    for (size_t k = 0; k < configs.size(); ++k) {
-      const LineFit f = fitLine(ser.x, y[k]);
-      std::printf("  %s: %.2f + %.3f/%s, R2 %.4f", configs[k].name().c_str(), f.intercept, f.slope,
-                  ser.axis == "houses" ? "house" : "light", f.r2);
+    // Least-squares lines: R2 near 1 means the cost grows linearly.
+    for (const auto* ys : {&y, &yCpu}) {
+      std::printf("%8s", ys == &y ? "fit" : "cpu fit");
+      for (size_t k = 0; k < configs.size(); ++k) {
+        const LineFit f = fitLine(ser.x, (*ys)[k]);
+        std::printf("  %s: %.1f + %.2f/%s R2 %.3f", configs[k].name().c_str(), f.intercept, f.slope,
+                    ser.axis == "houses" ? "house" : "light", f.r2);
+      }
+      std::printf("\n");
     }
-    std::printf("\n");
   }
 }
 
 int runDriver(const Settings& s) {
   std::printf("bench/vs-mesa: shadowref against Mesa through OSMesa\n");
-  std::printf("machine: %u hardware threads, %s\n", std::thread::hardware_concurrency(), cpuModel().c_str());
+  std::printf("machine: %u hardware threads, %s; load average %s\n", std::thread::hardware_concurrency(),
+              cpuModel().c_str(), loadAverage().c_str());
   std::ofstream csv = openCsv(s.csvPath);
   compareScenes(s, csv);
   const bool deterministic = checkDeterminism(comparedScenes(), csv);
