@@ -11,13 +11,6 @@ namespace {
 constexpr double kUnorm24Max = 16777215.0;  // 2^24 - 1
 }
 
-uint32_t DepthCodec::encode(double z) const {
-  // Not std::clamp: it returns -0.0 (and NaN) unchanged, and the bits of -0.0f (0x80000000) would
-  // sort above every positive depth. Negative zero, negatives and NaN all become +0.0.
-  z = z > 0.0 ? std::min(z, 1.0) : 0.0;
-  if (format == DepthFormat::Unorm24) return uint32_t(std::nearbyint(z * kUnorm24Max));
-  return std::bit_cast<uint32_t>(float(z));
-}
 
 double DepthCodec::decode(uint32_t code) const {
   if (format == DepthFormat::Unorm24) return double(code) / kUnorm24Max;

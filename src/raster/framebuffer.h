@@ -3,6 +3,9 @@
 // Pixel (x, y) is at index y * width + x with row 0 at the bottom, as glReadPixels returns it.
 #pragma once
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -21,7 +24,14 @@ enum class DepthFormat : uint8_t {
 // them, after the fragment depth has been converted to the buffer's format (GL 2.1 §4.1.5).
 struct DepthCodec {
   DepthFormat format = DepthFormat::Float32;
-  uint32_t encode(double z) const;  // z is clamped to [0, 1] first
+  // z is clamped to [0, 1] first. Not with std::clamp: it returns -0.0 (and NaN) unchanged, and
+  // the bits of -0.0f (0x80000000) would sort above every positive depth. Negative zero,
+  // negatives and NaN all become +0.0. Inline: it runs once per fragment.
+  uint32_t encode(double z) const {
+    z = z > 0.0 ? std::min(z, 1.0) : 0.0;
+    if (format == DepthFormat::Unorm24) return uint32_t(std::nearbyint(z * 16777215.0));
+    return std::bit_cast<uint32_t>(float(z));
+  }
   double decode(uint32_t code) const;
   // The minimum resolvable difference r of the polygon offset formula at depth z (GL 1.1 §3.5.5).
   double resolvableDifference(double zMax) const;

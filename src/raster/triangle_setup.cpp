@@ -121,10 +121,6 @@ bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   return true;
 }
 
-double planeDepthAt(const TriangleSetup& t, int px, int py) {
-  const double cx = double(px) + 0.5, cy = double(py) + 0.5;
-  return t.v[0].z + (t.dzdx * (cx - t.v[0].fx) + t.dzdy * (cy - t.v[0].fy));
-}
 
 double polygonOffset(const TriangleSetup& t, const PolygonOffset& po, const DepthCodec& codec) {
   const double m = std::max(std::fabs(t.dzdx), std::fabs(t.dzdy));

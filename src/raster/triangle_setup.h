@@ -64,7 +64,10 @@ bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
                    const RenderState& state, const DepthCodec& codec, TriangleSetup& out);
 
 // Window depth of the triangle's plane at the centre of pixel (px, py), before offset.
-double planeDepthAt(const TriangleSetup& t, int px, int py);
+inline double planeDepthAt(const TriangleSetup& t, int px, int py) {
+  const double cx = double(px) + 0.5, cy = double(py) + 0.5;
+  return t.v[0].z + (t.dzdx * (cx - t.v[0].fx) + t.dzdy * (cy - t.v[0].fy));
+}
 
 // GL 1.1 polygon offset: factor * max(|dz/dx|, |dz/dy|) + units * r.
 double polygonOffset(const TriangleSetup& t, const PolygonOffset& po, const DepthCodec& codec);
