@@ -9,148 +9,15 @@
 #include "raster/clear.h"
 #include "raster/lighting.h"
 #include "shadow/draw_tag.h"
-#include "shadow/light_view.h"
+#include "shadow/light_shadow.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
-#include "shadow/shadow_lookup.h"
 #include "shadow/soft_lights.h"
-#include "shadow/trapezoid.h"
+#include "shadow/trapezoid_overlay.h"
 
 namespace shadowref {
 
 namespace {
-
-Aabb sceneBounds(const std::vector<Instance>& instances) {
-  Aabb box;
-  for (const Instance& inst : instances) {
-    if (inst.worldBounds.empty()) continue;
-    box.add(inst.worldBounds.min);
-    box.add(inst.worldBounds.max);
-  }
-  return box;
-}
-
-// One light's maps and how the camera pass looks them up.
-struct LightShadow {
-  Light light;
-  bool cube = false;
-  std::array<DepthTexture, 6> textures;  // [0] only, unless cube
-  ShadowLookup lookup;
-  CubeShadowLookup cubeLookup;
-  bool trapezoidal = false;
-  Trapezoid trapezoid;
-
-  double factor(const glm::dvec3& p) const { return cube ? cubeLookup.factor(p) : lookup.factor(p); }
-};
-
-// Step 1: depth from the light into a size x size map. `projection` is P_light, or N_T · P_light
-// for TSM (002 Listing 11). Casters are the instances' shadow meshes (the low-poly proxy where
-// given, 004) within the light's range.
-DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& instances, const Light& light,
-                            const glm::dmat4& view, const glm::dmat4& projection, bool warped, int threads,
-                            RasterStats& stats) {
-  const int size = scene.shadow.mapSize;
-  Framebuffer fb(size, size, scene.depthFormat);
-  Renderer renderer(fb, threads);
-  RenderState state;
-  state.viewport = Viewport{0, 0, size, size, 0.0, 1.0};
-  state.depthTest = true;
-  state.depthFunc = CompareFunc::Less;
-  state.colorMask = {false, false, false, false};
-  // 002 §3.2: either polygon offset or only the back faces in the map.
-  state.cull = scene.shadow.backFacesOnly ? CullMode::Front : CullMode::None;
-  state.polygonOffset = {scene.shadow.offsetFactor != 0.0 || scene.shadow.offsetUnits != 0.0,
-                         scene.shadow.offsetFactor, scene.shadow.offsetUnits};
-  // N_T rescales z by its w per texel; without near/far clipping nothing of the focus region is
-  // lost to the rescaled planes, and the lookup clamps r to [0, 1] exactly as the map clamps depth.
-  state.depthClamp = warped;
-  clearDepth(fb, state, 1.0);
-
-  std::vector<ClipVertex> vertices;
-  std::vector<uint32_t> indices;
-  for (size_t i = 0; i < instances.size(); ++i) {
-    const Instance& inst = instances[i];
-    if (!inst.shadowMesh || !withinRange(light, inst.shadowBounds)) continue;
-    const VertexTransform xf{view * inst.world, projection};
-    const Mesh& mesh = *inst.shadowMesh;
-    vertices.resize(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v) vertices[v].position = xf.toClip(glm::dvec4(mesh.positions[v], 1.0));
-    indices.clear();
-    for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
-    RenderState mirrored;
-    DrawCall call;
-    call.state = &stateFor(state, inst, mirrored);
-    call.vertices = vertices;
-    call.indices = indices;
-    call.tag = drawTag(DrawKind::ShadowMap, int(i));
-    renderer.draw(call);
-  }
-  stats += renderer.stats();
-  DepthTexture tex;
-  tex.width = tex.height = size;
-  tex.depth.resize(fb.depthCodes().size());
-  for (size_t i = 0; i < tex.depth.size(); ++i) tex.depth[i] = float(fb.depthCodec().decode(fb.depthCodes()[i]));
-  return tex;
-}
-
-// N_T carries z unchanged (z row (0, 0, 1, 0)) and divides it by its w' per texel, which keeps
-// depth exactly affine across each triangle in the warped map, but where w' < 1 pushes z/w' out of
-// [-1, 1]: those depths would clamp to the far plane and lose every shadow there. Scaling the z
-// row by k = the smallest w' at the trapezoid's corners (w' is affine, so that is its minimum over
-// the map) keeps |k z / w'| <= 1; the camera pass looks up with the same matrix, so the comparison
-// is unchanged, and only depth resolution varies across the map (by max w' / min w').
-glm::dmat4 depthPreservingWarp(const Trapezoid& trapezoid) {
-  glm::dmat4 warp = trapezoid.NT;
-  double k = kInfinity;
-  for (const glm::dvec2& t : trapezoid.t) k = std::min(k, (warp * glm::dvec4(t, 0.0, 1.0)).w);
-  if (k > 0.0 && k < 1.0) warp[2][2] *= k;
-  return warp;
-}
-
-void configureLookup(ShadowLookup& lookup, const DepthTexture& texture, const glm::dmat4& T, const ShadowSettings& s) {
-  lookup.textureMatrix = T;
-  lookup.sampler.texture = &texture;
-  lookup.sampler.func = CompareFunc::LEqual;
-  lookup.sampler.failValue = s.compareFail;
-  lookup.pcf = s.pcf;
-  lookup.constantBias = s.constantBias;
-}
-
-std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vector<Instance>& instances,
-                                              const Aabb& bounds, const SceneView& view, const Light& light,
-                                              bool trapezoidal, int threads, FrameResult& result) {
-  auto ls = std::make_unique<LightShadow>();
-  ls->light = light;
-  if (light.type == LightType::Point) {
-    // Beyond the documents: six perspective maps, one per cube face.
-    ls->cube = true;
-    ls->cubeLookup.lightPosition = light.position;
-    const std::array<LightView, 6> views = pointLightCubeViews(light, bounds);
-    for (int f = 0; f < 6; ++f) {
-      ls->textures[size_t(f)] = renderDepthMap(scene, instances, light, views[size_t(f)].view, views[size_t(f)].projection,
-                                               false, threads, result.stats);
-      configureLookup(ls->cubeLookup.faces[size_t(f)], ls->textures[size_t(f)], textureMatrix(views[size_t(f)]), scene.shadow);
-    }
-    return ls;
-  }
-  const LightView lv = light.type == LightType::Directional ? directionalLightView(light, bounds)
-                                                           : spotLightView(light, bounds);
-  glm::dmat4 projection = lv.projection;
-  glm::dmat4 T = textureMatrix(lv);
-  if (trapezoidal) {
-    // 002 §4.1: the camera frustum in the light's post-projective space, its trapezoid, N_T.
-    const double far = std::isinf(scene.camera.farPlane) ? fitFarToBounds(scene.camera, bounds) : scene.camera.farPlane;
-    const auto corners = transformCorners(lv.projection * lv.view, frustumCorners(scene.camera, view.aspect, far));
-    ls->trapezoid = computeTrapezoid(corners, scene.shadow.focusRegion);
-    ls->trapezoidal = true;
-    const glm::dmat4 warp = depthPreservingWarp(ls->trapezoid);
-    projection = warp * lv.projection;
-    T = textureMatrix(lv, warp);
-  }
-  ls->textures[0] = renderDepthMap(scene, instances, light, lv.view, projection, trapezoidal, threads, result.stats);
-  configureLookup(ls->lookup, ls->textures[0], T, scene.shadow);
-  return ls;
-}
 
 // The camera pass's shader: 002's GL_MODULATE of the lit colour by the compare result, per light:
 // colour = sum over lights of (ambient / n + diffuse_i + specular_i) * factor_i. With one light,
@@ -229,6 +96,28 @@ std::vector<std::vector<Light>> accumulationFrames(const std::vector<Light>& lig
   return out;
 }
 
+// --dump shadowmap: each light's map(s) as the camera pass uses them ("L0", "L0.face3"), and for
+// TSM the teaching views of issue 5: "L0" is the warped light view (the scene drawn with N_T as
+// projection, 002 Listing 12), "L0.plain" the same light's unwarped map with the trapezoid drawn
+// over it in black (and a cross at the focus point).
+void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
+                    const std::vector<std::unique_ptr<LightShadow>>& shadows, int threads, FrameResult& result) {
+  for (size_t i = 0; i < shadows.size(); ++i) {
+    const LightShadow& ls = *shadows[i];
+    const std::string name = "L" + std::to_string(i);
+    for (int f = 0; f < ls.mapCount(); ++f) {
+      result.shadowMaps.push_back(ls.textures[size_t(f)]);
+      result.shadowMapNames.push_back(name + (ls.cube ? ".face" + std::to_string(f) : ""));
+    }
+    if (!ls.trapezoidal) continue;
+    RasterStats unused;
+    DepthTexture plain = renderDepthMap(scene, instances, ls.light, ls.views[0].view, ls.views[0].projection, threads, unused);
+    drawTrapezoidOutline(plain, ls.trapezoid);
+    result.shadowMaps.push_back(std::move(plain));
+    result.shadowMapNames.push_back(name + ".plain");
+  }
+}
+
 std::string passName(int& counter, const std::string& what) {
   char number[16];
   std::snprintf(number, sizeof number, "%02d-", ++counter);
@@ -242,7 +131,6 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
   const SceneView view = makeCameraView(scene);
   const std::vector<Instance> instances = scene.instances();
   const std::vector<PreparedInstance> prepared = prepareInstances(instances, view);
-  const Aabb bounds = sceneBounds(instances);
   Framebuffer& fb = renderer.framebuffer();
   const bool trapezoidal = method == ShadowMethod::Trapezoidal;
 
@@ -260,16 +148,10 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::unique_ptr<LightShadow>> shadows;
     for (const Light& light : frames[k])
-      shadows.push_back(buildLightShadow(scene, instances, bounds, view, light, trapezoidal, renderer.threads(), result));
+      shadows.push_back(buildLightShadow(scene, instances, view, light, trapezoidal, renderer.threads(), result.stats));
     const auto mapsDone = std::chrono::steady_clock::now();
     result.timings.push_back({passName(passCounter, "maps"), std::chrono::duration<double, std::milli>(mapsDone - start).count()});
-    if (k == 0 && options.keepShadowMaps) {
-      for (size_t i = 0; i < shadows.size(); ++i)
-        for (int f = 0; f < (shadows[i]->cube ? 6 : 1); ++f) {
-          result.shadowMaps.push_back(shadows[i]->textures[size_t(f)]);
-          result.shadowMapNames.push_back("L" + std::to_string(i) + (shadows[i]->cube ? ".face" + std::to_string(f) : ""));
-        }
-    }
+    if (k == 0 && options.keepShadowMaps) keepShadowMaps(scene, instances, shadows, renderer.threads(), result);
     if (k == 0) {
       for (size_t i = 0; i < shadows.size(); ++i) {
         std::ostringstream note;

@@ -1,0 +1,191 @@
+// bench/shadow_map_accuracy (issue 5 "Accuracy, measured"): how many pixels a shadow map gets
+// wrong, against the ray-traced light visibility of the oracle (tests/support/oracle), for
+// standard and trapezoidal maps at 128 … 4096 texels and each anti-self-shadowing choice.
+//
+// Per scene the oracle casts one primary ray per pixel and a shadow ray from its hit to the light.
+// Each configuration builds the light's map(s) exactly as a frame does (light_shadow.h) and looks
+// them up at the oracle's hit points; a pixel is wrong when the map shadows it (factor < 1) and
+// the light sees it (false shadow), or the map lights it and the light does not (missed shadow).
+// Spot lights count only points inside the cone (outside it nothing is lit to be shadowed).
+//
+//   shadow_map_accuracy [--quick] [--images DIR] [--csv FILE]
+//
+// --images writes, per scene, the oracle's shadow and each configuration's error picture (grey:
+// right, red: false shadow, blue: missed shadow) and the frame itself, for docs/shadow-maps.md.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "image/image_writer.h"
+#include "scene/scene_loader.h"
+#include "shadow/frame_renderer.h"
+#include "shadow/light_shadow.h"
+#include "shadow/scene_view.h"
+#include "shadow/shadow_map_accuracy.h"
+#include "support/oracle/oracle.h"
+
+namespace shadowref::bench {
+
+namespace {
+
+struct SceneCase {
+  std::string name;   // for the table
+  std::string file;   // scenes/<file>.yaml
+  std::vector<std::string> overrides;
+  bool tsm = true;    // point lights have cube maps only
+};
+
+struct AntiAcne {
+  std::string name;
+  std::vector<std::string> overrides;
+};
+
+// The anti-self-shadowing choices of 002 §3.2 (and none, for reference). The constant bias is
+// in window depth units of the map; 1e-4 of the outdoor scene's light depth range (~560 m) is
+// about 11 cm, of the room's (~9 m) about 2 mm.
+std::vector<AntiAcne> antiAcneChoices() {
+  return {{"offset", {}},  // the default: factor 1.1, units 4
+          {"bias", {"shadow.offset_factor=0", "shadow.offset_units=0", "shadow.bias=0.0001"}},
+          {"backfaces", {"shadow.offset_factor=0", "shadow.offset_units=0", "shadow.back_faces_only=true"}},
+          {"none", {"shadow.offset_factor=0", "shadow.offset_units=0"}}};
+}
+
+std::vector<SceneCase> sceneCases() {
+  return {{"outdoor", "outdoor", {}, true},
+          {"room", "room", {}, false},
+          // The room's ceiling light as a spot straight down: TSM needs a directional or spot light.
+          {"room-spot", "room", {"lights.0.type=spot", "lights.0.direction=[0, -1, 0]", "lights.0.spot_cutoff=70"}, true}};
+}
+
+Scene load(const SceneCase& c, const std::vector<std::string>& extra) {
+  LoadOptions options;
+  options.overrides = c.overrides;
+  options.overrides.insert(options.overrides.end(), extra.begin(), extra.end());
+  return loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/scenes/" + c.file + ".yaml", options);
+}
+
+// The pixels to compare: every hit, inside the cone for a spot light.
+std::vector<uint8_t> comparedPixels(const oracle::OracleImage& o, const Light& light) {
+  std::vector<uint8_t> mask = o.hitMask;
+  if (light.type != LightType::Spot) return mask;
+  const double cosCutoff = std::cos(light.spotCutoffDegrees * M_PI / 180.0);
+  for (size_t i = 0; i < mask.size(); ++i)
+    if (mask[i] && glm::dot(glm::normalize(o.hitPoint[i] - light.position), glm::normalize(light.direction)) < cosCutoff)
+      mask[i] = 0;
+  return mask;
+}
+
+void writeErrorImage(const LightShadow& shadow, const oracle::OracleImage& o, const std::vector<uint8_t>& mask,
+                     const std::string& path) {
+  Image8 img;
+  img.width = o.width;
+  img.height = o.height;
+  img.channels = 3;
+  img.pixels.assign(size_t(o.width) * size_t(o.height) * 3, 0);
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const size_t i = o.index(x, y);
+      uint8_t* px = &img.pixels[(size_t(o.height - 1 - y) * size_t(o.width) + size_t(x)) * 3];
+      if (!mask[i]) continue;
+      const bool shadowed = shadow.factor(o.hitPoint[i]) < 1.0;
+      const bool visible = o.lit[i] != 0;
+      const uint8_t grey = visible ? 200 : 90;
+      px[0] = px[1] = px[2] = grey;
+      if (shadowed && visible) px[0] = 255, px[1] = 0, px[2] = 0;
+      if (!shadowed && !visible) px[0] = 0, px[1] = 64, px[2] = 255;
+    }
+  writePng8(img, path);
+}
+
+void writeOracleImage(const oracle::OracleImage& o, const std::vector<uint8_t>& mask, const std::string& path) {
+  Image8 img;
+  img.width = o.width;
+  img.height = o.height;
+  img.channels = 1;
+  img.pixels.assign(size_t(o.width) * size_t(o.height), 0);
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const size_t i = o.index(x, y);
+      if (mask[i]) img.pixels[size_t(o.height - 1 - y) * size_t(o.width) + size_t(x)] = o.lit[i] ? 200 : 90;
+    }
+  writePng8(img, path);
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  bool quick = false;
+  std::string images, csvPath;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else if (!std::strcmp(argv[i], "--images") && i + 1 < argc) images = argv[++i];
+    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csvPath = argv[++i];
+    else {
+      std::cerr << "usage: shadow_map_accuracy [--quick] [--images DIR] [--csv FILE]\n";
+      return 2;
+    }
+  }
+  const std::vector<int> sizes = quick ? std::vector<int>{256, 1024} : std::vector<int>{128, 256, 512, 1024, 2048, 4096};
+  std::ofstream csv;
+  if (!csvPath.empty()) {
+    csv.open(csvPath);
+    csv << "scene,method,anti_acne,map_size,points,false_shadow,missed_shadow,wrong_percent\n";
+  }
+  std::printf("%-10s %-9s %-9s %6s %9s %8s %8s %8s\n", "scene", "method", "anti-acne", "size", "pixels", "false", "missed",
+              "wrong %");
+  for (const SceneCase& sc : sceneCases()) {
+    const Scene base = load(sc, {});
+    const Light& light = base.lights.at(0);
+    oracle::OracleOptions oo;
+    const oracle::OracleImage o = oracle::castOracle(base, light, oo);
+    const std::vector<uint8_t> mask = comparedPixels(o, light);
+    if (!images.empty()) writeOracleImage(o, mask, images + "/" + sc.name + "-oracle.png");
+    for (const char* method : {"shadowmap", "tsm"}) {
+      const bool trapezoidal = std::string(method) == "tsm";
+      if (trapezoidal && !sc.tsm) continue;
+      for (const AntiAcne& a : antiAcneChoices()) {
+        if (quick && a.name != "offset") continue;
+        for (int size : sizes) {
+          std::vector<std::string> extra = a.overrides;
+          extra.push_back("shadow.map_size=" + std::to_string(size));
+          const Scene scene = load(sc, extra);
+          const std::vector<Instance> instances = scene.instances();
+          RasterStats stats;
+          const auto shadow = buildLightShadow(scene, instances, makeCameraView(scene), scene.lights.at(0), trapezoidal, 0, stats);
+          const ShadowMapErrors e = countShadowErrors(*shadow, o.hitPoint, o.lit, mask);
+          std::printf("%-10s %-9s %-9s %6d %9zu %8zu %8zu %8.3f\n", sc.name.c_str(), method, a.name.c_str(), size, e.points,
+                      e.falseShadow, e.missedShadow, 100.0 * e.wrongFraction());
+          std::fflush(stdout);
+          if (csv) csv << sc.name << ',' << method << ',' << a.name << ',' << size << ',' << e.points << ',' << e.falseShadow
+                       << ',' << e.missedShadow << ',' << 100.0 * e.wrongFraction() << '\n';
+          if (!images.empty()) {
+            const std::string stem = images + "/" + sc.name + "-" + method + "-" + a.name + "-" + std::to_string(size);
+            writeErrorImage(*shadow, o, mask, stem + "-errors.png");
+            if (a.name == "offset") {
+              FrameOptions fo;
+              fo.method = trapezoidal ? ShadowMethod::Trapezoidal : ShadowMethod::ShadowMap;
+              fo.threads = 0;
+              writePng(renderFrame(scene, fo).framebuffer, stem + ".png");
+            }
+          }
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+}  // namespace shadowref::bench
+
+int main(int argc, char** argv) {
+  try {
+    return shadowref::bench::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "shadow_map_accuracy: " << e.what() << '\n';
+    return 1;
+  }
+}

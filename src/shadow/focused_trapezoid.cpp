@@ -1,0 +1,122 @@
+#include "shadow/focused_trapezoid.h"
+
+#include <algorithm>
+
+namespace shadowref {
+
+namespace {
+
+glm::dvec2 projectXY(const glm::dvec4& clip) { return glm::dvec2(clip) / clip.w; }
+
+// 002 Listing 10e as trapezoid.h reads it: the bounding rectangle of the points, clipped to the
+// light's view [−1, 1]².
+Trapezoid boundingRectangle(const std::vector<glm::dvec2>& points) {
+  glm::dvec2 lo(kInfinity), hi(-kInfinity);
+  for (const glm::dvec2& q : points) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  lo = glm::max(lo, glm::dvec2(-1.0));
+  hi = glm::min(hi, glm::dvec2(1.0));
+  if (!(lo.x < hi.x && lo.y < hi.y)) lo = glm::dvec2(-1.0), hi = glm::dvec2(1.0);
+  Trapezoid tz;
+  tz.fallback = true;
+  tz.t[0] = {lo.x, lo.y};
+  tz.t[1] = {hi.x, lo.y};
+  tz.t[2] = {hi.x, hi.y};
+  tz.t[3] = {lo.x, hi.y};
+  tz.NT = parallelogramToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
+  return tz;
+}
+
+bool allInFront(const std::array<glm::dvec4, 8>& clip) {
+  return std::all_of(clip.begin(), clip.end(), [](const glm::dvec4& c) { return c.w > 0.0; });
+}
+
+}  // namespace
+
+Trapezoid focusedTrapezoid(const std::array<glm::dvec4, 8>& frustumClip, const glm::dvec4& axisNearClip,
+                           const glm::dvec4& axisFarClip, const std::vector<glm::dvec4>& bodyClip,
+                           double focusRegion) {
+  if (bodyClip.empty()) return computeTrapezoid(frustumClip, focusRegion);
+
+  // 1. The body's points in light post-projective x-y.
+  std::vector<glm::dvec2> p;
+  p.reserve(bodyClip.size());
+  for (const glm::dvec4& c : bodyClip) p.push_back(projectXY(c));
+
+  // The degenerate case is the frustum's, as in computeTrapezoid; a frustum reaching behind a
+  // spot light, or a view axis not in front of it, has no trapezoid either.
+  if (!allInFront(frustumClip) || !(axisNearClip.w > 0.0) || !(axisFarClip.w > 0.0)) return boundingRectangle(p);
+  std::array<glm::dvec2, 8> corners;
+  for (size_t i = 0; i < 8; ++i) corners[i] = projectXY(frustumClip[i]);
+  // 2. The centre line: the view axis.
+  const glm::dvec2 nearCentre = projectXY(axisNearClip), farCentre = projectXY(axisFarClip);
+  double extent = 0.0;
+  for (const glm::dvec2& q : p) extent = std::max(extent, glm::length(q - nearCentre));
+  if (nearPlaneInsideFarPlane(corners) || !(glm::length(farCentre - nearCentre) > 1e-12 * extent)) {
+    Trapezoid tz = boundingRectangle(p);
+    tz.nearCentre = nearCentre, tz.farCentre = farCentre;
+    return tz;
+  }
+
+  Trapezoid tz;
+  tz.nearCentre = nearCentre;
+  tz.farCentre = farCentre;
+  const glm::dvec2 d = glm::normalize(farCentre - nearCentre);
+  const glm::dvec2 n(-d.y, d.x);
+
+  // 3. Top line through the body's nearest, base line through its farthest point.
+  double sMin = kInfinity, sMax = -kInfinity;
+  for (const glm::dvec2& q : p) {
+    sMin = std::min(sMin, glm::dot(q - nearCentre, d));
+    sMax = std::max(sMax, glm::dot(q - nearCentre, d));
+  }
+  tz.lambda = sMax - sMin;
+  if (!(tz.lambda > 0.0)) return boundingRectangle(p);  // a body flat across the view axis
+
+  // 4. The 80 % rule (002 §4.1.2).
+  tz.focusPoint = projectXY(axisNearClip + (axisFarClip - axisNearClip) * focusRegion);
+  tz.deltaPrime = glm::dot(tz.focusPoint - nearCentre, d) - sMin;
+  const double denominator = tz.lambda - 2.0 * tz.deltaPrime - tz.lambda * kEightyPercentLine;
+
+  // 5. Side lines through the outermost points.
+  if (!(denominator > 0.0)) {
+    double bMin = kInfinity, bMax = -kInfinity;
+    for (const glm::dvec2& q : p) {
+      bMin = std::min(bMin, glm::dot(q - nearCentre, n));
+      bMax = std::max(bMax, glm::dot(q - nearCentre, n));
+    }
+    if (!(bMax > bMin)) return boundingRectangle(p);
+    tz.parallelSides = true;
+    tz.eta = kInfinity;
+    tz.t[0] = nearCentre + sMax * d + bMin * n;
+    tz.t[1] = nearCentre + sMax * d + bMax * n;
+    tz.t[2] = nearCentre + sMin * d + bMax * n;
+    tz.t[3] = nearCentre + sMin * d + bMin * n;
+    tz.NT = parallelogramToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
+    return tz;
+  }
+  tz.eta = std::max(trapezoidEta(tz.lambda, tz.deltaPrime), 1e-9 * tz.lambda);
+  tz.apex = nearCentre + (sMin - tz.eta) * d;
+  double leftSlope = -kInfinity, rightSlope = kInfinity;
+  for (const glm::dvec2& q : p) {
+    const glm::dvec2 v = q - tz.apex;
+    const double slope = glm::dot(v, n) / glm::dot(v, d);
+    leftSlope = std::max(leftSlope, slope);
+    rightSlope = std::min(rightSlope, slope);
+  }
+  // A body seen edge-on from q (all points on one line) has no trapezoid.
+  if (!(leftSlope > rightSlope)) return boundingRectangle(p);
+  const double aTop = tz.eta, aBase = tz.eta + tz.lambda;
+  tz.t[0] = tz.apex + aBase * d + rightSlope * aBase * n;
+  tz.t[1] = tz.apex + aBase * d + leftSlope * aBase * n;
+  tz.t[2] = tz.apex + aTop * d + leftSlope * aTop * n;
+  tz.t[3] = tz.apex + aTop * d + rightSlope * aTop * n;
+
+  // 6. N_T (002 §4.1.2, 8 steps).
+  tz.NT = trapezoidToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
+  return tz;
+}
+
+}  // namespace shadowref
