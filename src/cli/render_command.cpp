@@ -175,10 +175,18 @@ int runRender(const RenderArgs& args) {
   try {
     if (dumpPasses) {
       options.onPass = [&](const std::string& pass, const Framebuffer& fb) {
-        if (!fb.hasColor()) return;
         const std::string path = siblingPath(outputs.front(), "pass-" + pass);
         ensureParentDirectory(path);
-        writePng(fb, path);
+        // A volume pass changes only the stencil buffer: its picture is the stencil counts.
+        if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
+          StencilViewOptions view;
+          view.signedCounts = true;
+          writeStencilPng(fb, path, view);
+        } else if (fb.hasColor()) {
+          writePng(fb, path);
+        } else {
+          return;
+        }
         passFiles.push_back(path);
       };
     }

@@ -36,6 +36,7 @@ StencilCounting countingFor(ShadowMethod method, const Instance& inst, const Sce
 
 struct LightTotals {
   size_t objects = 0, zpass = 0, zfail = 0;
+  std::vector<std::string> zfailObjects;  // which objects auto sent to z-fail
   ShadowVolumeStats volume;
 };
 
@@ -95,6 +96,7 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
     scratch.build(p, light, scene.shadow, how == StencilCounting::ZFail);
     ++totals.objects;
     ++(how == StencilCounting::ZFail ? totals.zfail : totals.zpass);
+    if (how == StencilCounting::ZFail && method == ShadowMethod::Auto) totals.zfailObjects.push_back(p.instance->path);
     totals.volume.silhouetteEdges += scratch.volume.stats.silhouetteEdges;
     totals.volume.sideTriangles += scratch.volume.stats.sideTriangles;
     totals.volume.frontCapTriangles += scratch.volume.stats.frontCapTriangles;
@@ -141,6 +143,10 @@ std::string lightNote(size_t index, const Light& light, const LightTotals& t, co
     << t.volume.sideTriangles << ", front cap " << t.volume.frontCapTriangles << ", back cap "
     << t.volume.backCapTriangles << ", volume fragments " << (after.fragments - before.fragments)
     << ", stencil writes " << (after.stencilWrites - before.stencilWrites);
+  if (!t.zfailObjects.empty()) {
+    s << "\n  auto chose z-fail for:";
+    for (const std::string& path : t.zfailObjects) s << " '" << path << "'";
+  }
   return s.str();
 }
 
