@@ -380,14 +380,51 @@ void scaling(const Settings& s, std::ofstream& csv) {
   }
 }
 
+// How much of the machine this process gets: the same spin loop on 1 thread, then on 2 threads
+// at once. On an idle 2-core machine both take the same time (parallelism 2); when other
+// processes keep the cores busy, 2 threads take longer and no renderer can show a 2-thread speedup.
+struct MachineShare {
+  double parallelism = 0.0;  // 2 * t(1 thread) / t(2 threads), 2 at best
+  double cpuShare = 0.0;     // CPU time / wall time of the 1-thread spin, 1 at best
+};
+
+MachineShare probeMachine() {
+  auto spin = [] {
+    volatile double x = 0.0;
+    for (long i = 0; i < 100'000'000; ++i) x = x + 1e-9;
+  };
+  auto wallOf = [&](int threads, double* cpu) {
+    const double cpu0 = cpuMilliseconds();
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<std::thread> pool;
+    for (int i = 0; i < threads; ++i) pool.emplace_back(spin);
+    for (std::thread& t : pool) t.join();
+    if (cpu) *cpu = cpuMilliseconds() - cpu0;
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  };
+  double cpu1 = 0.0;
+  const double t1 = wallOf(1, &cpu1);
+  const double t2 = wallOf(2, nullptr);
+  return {2.0 * t1 / t2, cpu1 / t1};
+}
+
 int runDriver(const Settings& s) {
   std::printf("bench/vs-mesa: shadowref against Mesa through OSMesa\n");
   std::printf("machine: %u hardware threads, %s; load average %s\n", std::thread::hardware_concurrency(),
               cpuModel().c_str(), loadAverage().c_str());
+  const MachineShare before = probeMachine();
+  std::printf("available: parallelism %.2f of 2, CPU share of one thread %.2f (spin-loop probe; 2 and 1.00 on an idle\n"
+              "machine; below that, other processes compete and wall-clock times and thread speedups suffer)\n",
+              before.parallelism, before.cpuShare);
   std::ofstream csv = openCsv(s.csvPath);
+  csv << "probe,before,0,0,machine,2,1," << before.parallelism << ",,," << before.cpuShare << ",\"parallelism; cpu share\"\n";
   compareScenes(s, csv);
   const bool deterministic = checkDeterminism(comparedScenes(), csv);
   if (s.scaling) scaling(s, csv);
+  const MachineShare after = probeMachine();
+  std::printf("\navailable at the end: parallelism %.2f of 2, CPU share %.2f; load average %s\n", after.parallelism,
+              after.cpuShare, loadAverage().c_str());
+  csv << "probe,after,0,0,machine,2,1," << after.parallelism << ",,," << after.cpuShare << ",\"parallelism; cpu share\"\n";
   std::printf("\nCSV: %s\n", s.csvPath.c_str());
   return deterministic ? 0 : 1;
 }
