@@ -45,16 +45,22 @@ Trapezoid focusedTrapezoid(const std::array<glm::dvec4, 8>& frustumClip, const g
   p.reserve(bodyClip.size());
   for (const glm::dvec4& c : bodyClip) p.push_back(projectXY(c));
 
-  // The degenerate case is the frustum's, as in computeTrapezoid; a frustum reaching behind a
-  // spot light, or a view axis not in front of it, has no trapezoid either.
-  if (!allInFront(frustumClip) || !(axisNearClip.w > 0.0) || !(axisFarClip.w > 0.0)) return boundingRectangle(p);
-  std::array<glm::dvec2, 8> corners;
-  for (size_t i = 0; i < 8; ++i) corners[i] = projectXY(frustumClip[i]);
+  // A view axis reaching behind a spot light has no image to build on.
+  if (!(axisNearClip.w > 0.0) || !(axisFarClip.w > 0.0)) return boundingRectangle(p);
+  // The degenerate case is the frustum's, as in computeTrapezoid. A frustum reaching behind a
+  // spot light (a light inside the scene, seen by a camera below it: the room) has no image of
+  // its far polygon; its body, clipped to the light's volume, still has a trapezoid.
+  bool degenerate = false;
+  if (allInFront(frustumClip)) {
+    std::array<glm::dvec2, 8> corners;
+    for (size_t i = 0; i < 8; ++i) corners[i] = projectXY(frustumClip[i]);
+    degenerate = nearPlaneInsideFarPlane(corners);
+  }
   // 2. The centre line: the view axis.
   const glm::dvec2 nearCentre = projectXY(axisNearClip), farCentre = projectXY(axisFarClip);
   double extent = 0.0;
   for (const glm::dvec2& q : p) extent = std::max(extent, glm::length(q - nearCentre));
-  if (nearPlaneInsideFarPlane(corners) || !(glm::length(farCentre - nearCentre) > 1e-12 * extent)) {
+  if (degenerate || !(glm::length(farCentre - nearCentre) > 1e-12 * extent)) {
     Trapezoid tz = boundingRectangle(p);
     tz.nearCentre = nearCentre, tz.farCentre = farCentre;
     return tz;

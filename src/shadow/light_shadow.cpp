@@ -46,9 +46,73 @@ void buildTrapezoid(LightShadow& ls, const Scene& scene, const SceneView& view, 
                                   lightClip * glm::dvec4(camera.eye + f * dMax, 1.0), bodyClip,
                                   scene.shadow.focusRegion);
   ls.trapezoidal = true;
+  ls.depthAnchor = camera.eye + f * dMin;
+}
+
+// The half-space in front of the light's near plane, −z_eye ≥ near, in object coordinates of a
+// mesh drawn with `modelView` (V_light · world).
+HalfSpace frontOf(const glm::dmat4& modelView, double near) {
+  const glm::dvec4 row2(modelView[0][2], modelView[1][2], modelView[2][2], modelView[3][2]);
+  return HalfSpace{-glm::dvec3(row2), -row2.w - near};
+}
+
+// A perspective light's map warped by N_T needs its triangles clipped to the front of the light
+// BEFORE the warp: N_T mixes w into x, y and w, so a point behind the light (w < 0) can come out
+// with w' > 0 inside the square, and the rasterizer's clipping, done after the warp, would keep
+// it (the room's ceiling drew over the floor's map). Triangles wholly in front keep their
+// vertices; the others are clipped (Sutherland–Hodgman) and fanned from new vertices.
+void appendClippedTriangles(const Mesh& mesh, const HalfSpace& front, const VertexTransform& xf,
+                            std::vector<ClipVertex>& vertices, std::vector<uint32_t>& indices) {
+  for (const glm::uvec3& t : mesh.triangles) {
+    const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+    if (front.signedDistance(a) >= 0.0 && front.signedDistance(b) >= 0.0 && front.signedDistance(c) >= 0.0) {
+      indices.insert(indices.end(), {t.x, t.y, t.z});
+      continue;
+    }
+    const ConvexPolygon clipped = clipPolygon({a, b, c}, front);
+    if (clipped.size() < 3) continue;
+    const uint32_t first = uint32_t(vertices.size());
+    for (const glm::dvec3& p : clipped) {
+      ClipVertex v;
+      v.position = xf.toClip(glm::dvec4(p, 1.0));
+      vertices.push_back(v);
+    }
+    for (uint32_t k = 1; k + 1 < clipped.size(); ++k) indices.insert(indices.end(), {first, first + k, first + k + 1});
+  }
 }
 
 }  // namespace
+
+glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const std::vector<glm::dvec3>& body,
+                            const glm::dvec3& anchor) {
+  const glm::dmat4 lightClip = light.projection * light.view;
+  double zMin = kInfinity, zMax = -kInfinity;
+  for (const glm::dvec3& p : body) {
+    const glm::dvec4 c = lightClip * glm::dvec4(p, 1.0);
+    if (!(c.w > 0.0)) continue;
+    zMin = std::min(zMin, c.z / c.w);
+    zMax = std::max(zMax, c.z / c.w);
+  }
+  if (!(zMax >= zMin)) zMin = -1.0, zMax = 1.0;
+  const glm::dvec4 a = lightClip * glm::dvec4(anchor, 1.0);
+  const double centre = a.w > 0.0 ? std::clamp(a.z / a.w, zMin, zMax) : 0.5 * (zMin + zMax);
+  const double half = std::max(std::max(zMax - centre, centre - zMin) * (1.0 + kFocusedDepthMargin), kMinFocusedDepthHalfRange);
+  const double scale = 1.0 / half;
+  // z' = scale · (z − centre · w) in the light's clip coordinates (x, y, z, w): divided by the
+  // warped w' = w'' · w it gives scale · (Z − centre) / w''. Row 2 = scale · (e_z − centre · e_w).
+  glm::dmat4 warp = NT;
+  warp[0][2] = 0.0;
+  warp[1][2] = 0.0;
+  warp[2][2] = scale;
+  warp[3][2] = -scale * centre;
+  return warp;
+}
+
+double LightShadow::factor(const glm::dvec3& p) const {
+  if (cube) return cubeLookup.factor(p);
+  if (trapezoidal && !((views[0].projection * (views[0].view * glm::dvec4(p, 1.0))).w > 0.0)) return 1.0;
+  return lookup.factor(p);
+}
 
 Aabb sceneBounds(const std::vector<Instance>& instances) {
   Aabb box;
@@ -61,7 +125,8 @@ Aabb sceneBounds(const std::vector<Instance>& instances) {
 }
 
 DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& instances, const Light& light,
-                            const glm::dmat4& view, const glm::dmat4& projection, int threads, RasterStats& stats) {
+                            const glm::dmat4& view, const glm::dmat4& projection, int threads, RasterStats& stats,
+                            double clipNear, bool depthClamp) {
   const int size = scene.shadow.mapSize;
   Framebuffer fb(size, size, scene.depthFormat);
   Renderer renderer(fb, threads);
@@ -74,6 +139,9 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   state.cull = scene.shadow.backFacesOnly ? CullMode::Front : CullMode::None;
   state.polygonOffset = {scene.shadow.offsetFactor != 0.0 || scene.shadow.offsetUnits != 0.0,
                          scene.shadow.offsetFactor, scene.shadow.offsetUnits};
+  // A focused depth range (focusedDepthWarp) puts casters between the light and the focus body
+  // before the near plane: clamped to depth 0 they still shadow everything behind them.
+  state.depthClamp = depthClamp;
   clearDepth(fb, state, 1.0);
 
   std::vector<ClipVertex> vertices;
@@ -86,7 +154,11 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
     vertices.resize(mesh.positions.size());
     for (size_t v = 0; v < mesh.positions.size(); ++v) vertices[v].position = xf.toClip(glm::dvec4(mesh.positions[v], 1.0));
     indices.clear();
-    for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    if (clipNear > 0.0) {
+      appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, vertices, indices);
+    } else {
+      for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    }
     RenderState mirrored;
     DrawCall call;
     call.state = &stateFor(state, inst, mirrored);
@@ -129,10 +201,17 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
     // V_light. Inside the trapezoid the warped w is ≥ 1 (trapezoid.h), so the light's depths stay
     // within [−1, 1] and nothing of the map's content meets the near or far plane.
     buildTrapezoid(*ls, scene, view, bounds);
-    projection = ls->trapezoid.NT * lv.projection;
-    T = textureMatrix(lv, ls->trapezoid.NT);
+    // An affine N_T (the bounding-rectangle fallback, parallel side lines) has w'' = 1: no false
+    // gradient to remove, and the map is a standard map of the rectangle.
+    const glm::dmat4& NT = ls->trapezoid.NT;
+    ls->focusedDepth = !(NT[0][3] == 0.0 && NT[1][3] == 0.0 && NT[2][3] == 0.0 && NT[3][3] == 1.0);
+    ls->warp = ls->focusedDepth ? focusedDepthWarp(NT, lv, ls->focusBody, ls->depthAnchor) : NT;
+    projection = ls->warp * lv.projection;
+    T = textureMatrix(lv, ls->warp);
   }
-  ls->textures[0] = renderDepthMap(scene, instances, light, lv.view, projection, threads, stats);
+  const bool clipToFront = trapezoidal && light.type == LightType::Spot;
+  ls->textures[0] = renderDepthMap(scene, instances, light, lv.view, projection, threads, stats,
+                                   clipToFront ? lv.nearPlane : 0.0, ls->focusedDepth);
   configureLookup(ls->lookup, ls->textures[0], T, scene.shadow);
   return ls;
 }

@@ -33,18 +33,46 @@ struct LightShadow {
   bool trapezoidal = false;
   Trapezoid trapezoid;                   // with trapezoidal: its corners, η, N_T
   std::vector<glm::dvec3> focusBody;     // with trapezoidal: the body's vertices (world)
+  glm::dvec3 depthAnchor{0.0};           // with trapezoidal: where the view axis enters the body
+  glm::dmat4 warp{1.0};                  // with trapezoidal: focusedDepthWarp(N_T, ...), or N_T when affine
+  bool focusedDepth = false;             // warp is focusedDepthWarp (map pass with depth clamp)
 
   LightShadow() = default;
   LightShadow(const LightShadow&) = delete;  // the lookups point into `textures`
   LightShadow& operator=(const LightShadow&) = delete;
 
-  // 1 where lit, the compare-fail value where shadowed, between them at PCF edges.
-  double factor(const glm::dvec3& worldPosition) const { return cube ? cubeLookup.factor(worldPosition) : lookup.factor(worldPosition); }
+  // 1 where lit, the compare-fail value where shadowed, between them at PCF edges. Behind a spot
+  // light (w ≤ 0 in its unwarped clip space) 1, as ShadowLookup does for a standard map: N_T's q
+  // can be positive there.
+  double factor(const glm::dvec3& worldPosition) const;
   int mapCount() const { return cube ? 6 : 1; }
 };
 
 // The world box the maps are fitted to: every instance's bounds.
 Aabb sceneBounds(const std::vector<Instance>& instances);
+
+// The warp the TSM map is drawn and looked up with: N_T (x, y, w rows as 002 §4.1.2) with its
+// depth row replaced, so the warped depth of a point at light depth Z (NDC) on a ray whose
+// warped w is w'' times the light's becomes s · (Z − Z0) / w'' instead of Z / w'':
+//   - N_T keeps z and divides it by w'' (1 at the top line, up to (η + λ)/η at the base), which
+//     adds a depth gradient Z · ∇(1/w'') across the map that no surface has; polygon offset's
+//     slope term follows it. For a spot light, whose depths Z all lie near 1, it was 10× larger
+//     than the distance between the room's table and floor, and no shadow survived the offset
+//     (measured: 9.5 % wrong pixels, standard 0.5 %). With Z0 the false gradient is
+//     s · (Z − Z0) · ∇(1/w''): zero at depth Z0. ∇(1/w'') is largest where w'' is small, at the
+//     top line, near the camera; so Z0 = the light depth of `anchor`, the point where the view
+//     axis enters the focus body (clamped to the body's depth range);
+//   - s = 1 / the larger distance from Z0 to the ends of the body's depth range (plus
+//     kFocusedDepthMargin) spends the depth buffer on the visible part: receivers in the body
+//     get |depth| ≤ 1; casters nearer the light fall below −1 and are clamped to window depth 0
+//     (depth clamp in the map pass), still in front of everything they shadow.
+// Order along each light ray is kept (s > 0, w'' > 0 there), and the depth stays affine in the
+// warped map's window space, so the rasterizer interpolates it exactly. An empty body: the
+// range [−1, 1].
+inline constexpr double kFocusedDepthMargin = 1e-3;
+inline constexpr double kMinFocusedDepthHalfRange = 1e-6;
+glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const std::vector<glm::dvec3>& body,
+                            const glm::dvec3& anchor);
 
 // Renders `light`'s map(s) with the scene's ShadowSettings and sets up the lookup. `trapezoidal`
 // selects TSM for directional and spot lights (point lights always get cube maps). Raster work
@@ -55,8 +83,11 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
 
 // Step 1 alone: depth from the light into a size × size map through `view` and `projection`
 // (P_light, or N_T · P_light for TSM, 002 Listing 11). Casters are the instances' shadow meshes
-// (the low-poly proxy where given, 004) within the light's range.
+// (the low-poly proxy where given, 004) within the light's range. clipNear > 0: triangles are
+// first clipped to the front of the light's near plane at that distance (a perspective map
+// warped by N_T, see light_shadow.cpp). depthClamp: ARB_depth_clamp in the pass (TSM).
 DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& instances, const Light& light,
-                            const glm::dmat4& view, const glm::dmat4& projection, int threads, RasterStats& stats);
+                            const glm::dmat4& view, const glm::dmat4& projection, int threads, RasterStats& stats,
+                            double clipNear = 0.0, bool depthClamp = false);
 
 }  // namespace shadowref
