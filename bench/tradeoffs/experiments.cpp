@@ -124,7 +124,7 @@ void pcf(Builder& b) {
   }
 }
 
-// Polygon offset (002 §3.2: the default 1.1, 4), none, only units, stronger; back faces only;
+// Polygon offset (002 §3.2: the default 1.1 / 4), none, only units, stronger; back faces only;
 // a constant bias in the comparison instead.
 void bias(Builder& b) {
   struct Choice {
@@ -134,7 +134,7 @@ void bias(Builder& b) {
   const std::vector<Choice> choices = {
       {"no offset", {"shadow.offset_factor=0", "shadow.offset_units=0"}},
       {"units 4 only", {"shadow.offset_factor=0", "shadow.offset_units=4"}},
-      {"offset 4, 16", {"shadow.offset_factor=4", "shadow.offset_units=16"}},
+      {"offset 4/16", {"shadow.offset_factor=4", "shadow.offset_units=16"}},
       {"back faces only", {"shadow.offset_factor=0", "shadow.offset_units=0", "shadow.back_faces_only=true"}},
       {"bias 0.001", {"shadow.offset_factor=0", "shadow.offset_units=0", "shadow.bias=0.001"}},
       {"bias 0.01", {"shadow.offset_factor=0", "shadow.offset_units=0", "shadow.bias=0.01"}},

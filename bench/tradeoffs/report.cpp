@@ -332,8 +332,9 @@ void writeMarkdown(const std::string& path, const RunInfo& info, const std::vect
          "(`tradeoffs --probe`). Images are **"
       << info.size.width << "×" << info.size.height
       << "** (the documents used 800×640), so absolute times are not theirs; ratios are what compares.\n"
-      << "- **Peak memory**: `getrusage(RUSAGE_SELF).ru_maxrss` of that child at its end: program, libraries, the "
-         "loaded scene and every buffer and shadow map. A child that loads nothing peaks at "
+      << "- **Peak memory**: the child's peak resident set, `VmHWM` of `/proc/self/status` at its end: program, "
+         "libraries, the loaded scene and every buffer and shadow map (not `getrusage`'s `ru_maxrss`, which Linux "
+         "carries over from the forking parent). A child that loads nothing peaks at "
       << mib(info.baselineRssKiB) << " MiB; subtract that for the configuration's own share.\n"
       << "- **Ground truth, hard shadows**: the test-only ray-casting oracle (`tests/support/oracle`, independent of "
          "the rasterizer): per pixel the first hit of the primary ray and a shadow ray to the light (`lit`). For "

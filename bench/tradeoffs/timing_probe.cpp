@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -18,10 +19,17 @@ namespace shadowref::bench {
 
 namespace {
 
+// The peak resident set of this process image: VmHWM of /proc/self/status. Not getrusage's
+// ru_maxrss: Linux carries the forking parent's peak over fork and exec into the child's ru_maxrss,
+// so every child would report at least the bench's own (oracle-sized) peak.
 long ownPeakRssKiB() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));  // "VmHWM:   12345 kB"
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss;  // Linux: KiB
+  return usage.ru_maxrss;
 }
 
 // fork + exec, the child's stdout read through a pipe; no shell, so no quoting.

@@ -1,5 +1,5 @@
-// Time per frame and peak memory of one configuration, measured in a fresh child process so that
-// its peak resident set (getrusage ru_maxrss) is that configuration's alone.
+// Time per frame and peak memory of one configuration, measured in a fresh child process (fork +
+// exec) so that its peak resident set (VmHWM) is that configuration's alone.
 #pragma once
 
 #include <string>
@@ -19,7 +19,7 @@ struct ProbeResult {
   bool ok = false;
   std::string error;
   double medianMs = 0.0, minMs = 0.0, maxMs = 0.0;
-  long peakRssKiB = 0;  // ru_maxrss of the child: binary, libraries, scene and every buffer
+  long peakRssKiB = 0;  // VmHWM of the child: binary, libraries, scene and every buffer
 };
 
 // Runs `self --probe ...` and reads its one line of output. `self` is this program's path.

@@ -4,7 +4,7 @@
 //
 //   tradeoffs [--scenes DIR] [--csv FILE] [--plots DIR] [--doc FILE] [--frames N] [--threads N]
 //             [--samples N] [--only GROUP] [--commit TEXT]
-//   tradeoffs --probe SCENE METHOD THREADS FRAMES [-D overrides...]   (the child)
+//   tradeoffs --probe SCENE METHOD THREADS FRAMES [key=value overrides...]   (the child)
 #include <unistd.h>
 
 #include <chrono>
