@@ -1,0 +1,107 @@
+// Shadow-map accuracy against the ray-traced oracle (issue 5 "Accuracy, measured";
+// docs/shadow-maps.md has the full table from bench/shadow_map_accuracy.cpp). The bounds here are
+// the measured values at this test's image size plus a margin, so a change that makes the maps
+// markedly worse fails, and 002 §6.1's claim (TSM at 256² looks like standard at 1024²) is held
+// to on the scene it was made for.
+//
+// Wrong pixel: the map shadows it and the light sees it, or the map lights it and the light does
+// not (countShadowErrors), over every pixel whose primary ray hits the scene.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "scene/scene_loader.h"
+#include "shadow/light_shadow.h"
+#include "shadow/scene_view.h"
+#include "shadow/shadow_map_accuracy.h"
+#include "support/oracle/oracle.h"
+
+using namespace shadowref;
+
+namespace {
+
+// AddressSanitizer (CI runs the suite under it too) is ~20x slower: a smaller image.
+#if defined(__SANITIZE_ADDRESS__)
+const std::vector<std::string> kImageSize = {"image.width=200", "image.height=160"};
+#else
+const std::vector<std::string> kImageSize = {"image.width=400", "image.height=320"};
+#endif
+
+Scene loadWith(const std::string& name, std::vector<std::string> overrides) {
+  LoadOptions options;
+  options.overrides = kImageSize;
+  options.overrides.insert(options.overrides.end(), overrides.begin(), overrides.end());
+  return loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/scenes/" + name + ".yaml", options);
+}
+
+struct Measurement {
+  const oracle::OracleImage* oracle;
+  std::string scene;
+  std::vector<std::string> overrides;
+
+  // Percent of hit pixels the map gets wrong.
+  double wrongPercent(bool trapezoidal, int size, std::vector<std::string> extra = {}) const {
+    std::vector<std::string> all = overrides;
+    all.insert(all.end(), extra.begin(), extra.end());
+    all.push_back("shadow.map_size=" + std::to_string(size));
+    const Scene s = loadWith(scene, all);
+    RasterStats stats;
+    const auto shadow = buildLightShadow(s, s.instances(), makeCameraView(s), s.lights.at(0), trapezoidal, 0, stats);
+    const ShadowMapErrors e = countShadowErrors(*shadow, oracle->hitPoint, oracle->lit, oracle->hitMask);
+    REQUIRE(e.points > 10000);
+    return 100.0 * e.wrongFraction();
+  }
+};
+
+}  // namespace
+
+TEST_CASE("shadow map accuracy: on the outdoor scene TSM at 256² is at least as right as standard mapping at 1024² "
+          "(002 §6.1), and TSM is never markedly worse than standard at the same size", "[shadowmap-accuracy]") {
+  const Scene base = loadWith("outdoor", {});
+  const oracle::OracleImage o = oracle::castOracle(base, base.lights.at(0));
+  const Measurement m{&o, "outdoor", {}};
+  const double standard1024 = m.wrongPercent(false, 1024);
+  const double tsm256 = m.wrongPercent(true, 256);
+  const double standard256 = m.wrongPercent(false, 256);
+  const double tsm1024 = m.wrongPercent(true, 1024);
+  INFO("outdoor wrong %: standard 256 " << standard256 << ", 1024 " << standard1024 << "; tsm 256 " << tsm256 << ", 1024 "
+                                        << tsm1024);
+  // Measured (400 x 320 / 200 x 160): standard 256: 4.84 / 4.70, 1024: 3.77 / 3.64; TSM 256:
+  // 3.30 / 3.07, 1024: 1.54 / 1.30. docs/shadow-maps.md has 800 x 640.
+  CHECK(standard1024 < 4.5);
+  CHECK(tsm256 <= standard1024 + 0.25);  // 002 §6.1, with a quarter point of slack
+  CHECK(tsm256 < standard256);
+  CHECK(tsm1024 < standard1024);
+  CHECK(tsm1024 < 2.0);
+}
+
+TEST_CASE("shadow map accuracy: the room's cube maps and its spot variant stay within their measured error, and "
+          "every anti-self-shadowing choice beats none", "[shadowmap-accuracy]") {
+  {
+    const Scene base = loadWith("room", {});
+    const oracle::OracleImage o = oracle::castOracle(base, base.lights.at(0));
+    const Measurement m{&o, "room", {}};
+    const double offset = m.wrongPercent(false, 512);
+    const double backFaces = m.wrongPercent(false, 512, {"shadow.offset_factor=0", "shadow.offset_units=0",
+                                                          "shadow.back_faces_only=true"});
+    const double none = m.wrongPercent(false, 512, {"shadow.offset_factor=0", "shadow.offset_units=0"});
+    INFO("room (cube maps 512) wrong %: offset " << offset << ", back faces " << backFaces << ", none " << none);
+    // Measured (400 x 320 / 200 x 160): offset 0.17 / 0.17, back faces 0.74 / 0.71, none 3.97 / 3.89.
+    CHECK(offset < 0.4);
+    CHECK(backFaces < 1.0);
+    CHECK(none > 2.0 * backFaces);  // self-shadowing acne, what the choices are for
+  }
+  {
+    const std::vector<std::string> spot = {"lights.0.type=spot", "lights.0.direction=[0, -1, 0]", "lights.0.spot_cutoff=70"};
+    const Scene base = loadWith("room", spot);
+    const oracle::OracleImage o = oracle::castOracle(base, base.lights.at(0));
+    const Measurement m{&o, "room", spot};
+    const double standard = m.wrongPercent(false, 1024);
+    const double tsm = m.wrongPercent(true, 1024);
+    INFO("room-spot 1024 wrong %: standard " << standard << ", tsm " << tsm);
+    // Measured (400 x 320 / 200 x 160): standard 0.37 / 0.38, TSM 0.33 / 0.35.
+    CHECK(standard < 0.6);
+    CHECK(tsm < 0.6);
+  }
+}
