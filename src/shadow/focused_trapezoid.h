@@ -11,7 +11,9 @@
 //  - the side lines from q through the body's outermost points.
 // The degenerate case is decided on the whole frustum exactly as computeTrapezoid does (near
 // polygon inside the far polygon: the camera looks along the light); it falls back to the
-// bounding rectangle of the body. With the body equal to the frustum this is computeTrapezoid.
+// bounding rectangle of the body. A frustum reaching behind a spot light (a light inside the
+// scene) has no far polygon to test; its body, clipped to the light's volume, is used as it is.
+// With the body equal to the frustum this is computeTrapezoid.
 #pragma once
 
 #include <array>
