@@ -73,8 +73,8 @@ void markParetoFronts(std::vector<Row>& rows) {
 
 void writeCsv(const std::string& path, const RunInfo& info, const std::vector<Row>& rows) {
   std::ofstream out(path);
-  out << "group,scene,variant,method,overrides,width,height,threads,frames,lights_rendered,median_ms,min_ms,max_ms,"
-         "peak_rss_kib,reference,pixels,mae,wrong,wrong_off_edges,reference_shadowed,plot,pareto,note\n";
+  out << "group,scene,variant,method,overrides,width,height,threads,frames,lights_rendered,cpu_median_ms,cpu_min_ms,cpu_max_ms,"
+         "peak_rss_kib,wall_median_ms,reference,pixels,mae,wrong,wrong_off_edges,reference_shadowed,plot,pareto,note\n";
   for (const Row& r : rows) {
     const Experiment& e = r.experiment;
     out << csvField(e.group) << ',' << csvField(e.scene) << ',' << csvField(e.variant) << ',' << e.method << ','
@@ -82,8 +82,8 @@ void writeCsv(const std::string& path, const RunInfo& info, const std::vector<Ro
         << ',' << info.frames << ',' << r.lightsRendered << ',';
     if (r.timing.ok)
       out << fixed(r.timing.medianMs, 3) << ',' << fixed(r.timing.minMs, 3) << ',' << fixed(r.timing.maxMs, 3) << ','
-          << r.timing.peakRssKiB << ',';
-    else out << ",,,,";
+          << r.timing.peakRssKiB << ',' << fixed(r.timing.wallMedianMs, 3) << ',';
+    else out << ",,,,,";
     out << name(e.reference) << ',';
     if (r.errorMessage.empty())
       out << r.error.pixels << ',' << fixed(r.error.mae, 6) << ',' << fixed(r.error.wrong, 6) << ','
@@ -102,8 +102,8 @@ void writePlotData(const std::string& directory, const std::vector<Row>& rows) {
     std::sort(members.begin(), members.end(),
               [](const Row* a, const Row* b) { return a->timing.medianMs < b->timing.medianMs; });
     std::ofstream all(directory + "/plot-" + plot + ".dat"), front(directory + "/plot-" + plot + "-front.dat");
-    all << "# median_ms mae_percent label\n";
-    front << "# median_ms mae_percent label\n";
+    all << "# cpu_median_ms mae_percent label\n";
+    front << "# cpu_median_ms mae_percent label\n";
     for (const Row* r : members) {
       const std::string line = fixed(r->timing.medianMs, 3) + " " + fixed(100.0 * r->error.mae, 4) + " \"" +
                                r->experiment.method + " " + r->experiment.variant + "\"\n";
@@ -326,10 +326,13 @@ void writeMarkdown(const std::string& path, const RunInfo& info, const std::vect
       << "; the whole run took " << fixed(info.wallSeconds / 60.0, 1) << " min.\n"
       << "- **Load**: the machine was shared with other builds and tests while this ran (load average before: `"
       << info.loadBefore << "`, after: `" << info.loadAfter
-      << "`). Times are medians to blunt that; differences under about 10 % are noise.\n"
-      << "- **Time**: median wall time of " << info.frames
+      << "`). CPU time and medians blunt that, not wholly (caches and memory bandwidth are shared): read "
+         "differences under about 15 % as noise.\n"
+      << "- **Time**: median **CPU time** per frame (`CLOCK_PROCESS_CPUTIME_ID`) of " << info.frames
       << " frames of `renderFrame` after one warm-up frame, every configuration in a fresh child process "
-         "(`tradeoffs --probe`). Images are **"
+         "(`tradeoffs --probe`). CPU time, not wall time, because on this loaded machine wall time swung by 2× "
+         "between identical configurations run a minute apart; the CSV keeps the wall-time median too. "
+         "Images are **"
       << info.size.width << "×" << info.size.height
       << "** (the documents used 800×640), so absolute times are not theirs; ratios are what compares.\n"
       << "- **Peak memory**: the child's peak resident set, `VmHWM` of `/proc/self/status` at its end: program, "

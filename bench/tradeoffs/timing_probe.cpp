@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -61,6 +62,12 @@ std::string runChild(const std::string& self, const std::vector<std::string>& ar
   return out;
 }
 
+double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
@@ -79,7 +86,7 @@ ProbeResult runProbe(const std::string& self, const ProbeRequest& request) {
   std::istringstream line(out);
   std::string word;
   line >> word;
-  if (word == "ok" && line >> result.medianMs >> result.minMs >> result.maxMs >> result.peakRssKiB) {
+  if (word == "ok" && line >> result.medianMs >> result.minMs >> result.maxMs >> result.peakRssKiB >> result.wallMedianMs) {
     result.ok = true;
     return result;
   }
@@ -90,7 +97,7 @@ ProbeResult runProbe(const std::string& self, const ProbeRequest& request) {
 
 int probeMain(const std::vector<std::string>& args) {
   if (args.size() == 1 && args[0] == "baseline") {
-    std::printf("ok 0 0 0 %ld\n", ownPeakRssKiB());
+    std::printf("ok 0 0 0 %ld 0\n", ownPeakRssKiB());
     return 0;
   }
   if (args.size() < 4) {
@@ -107,14 +114,16 @@ int probeMain(const std::vector<std::string>& args) {
     options.threads = std::stoi(args[2]);
     const int frames = std::stoi(args[3]);
     renderFrame(scene, options);  // warm-up: page in buffers and code
-    std::vector<double> ms;
+    std::vector<double> cpu, wall;
     for (int i = 0; i < frames; ++i) {
+      const double cpuStart = processCpuMs();
       const auto start = std::chrono::steady_clock::now();
       const FrameResult frame = renderFrame(scene, options);
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      cpu.push_back(processCpuMs() - cpuStart);
     }
-    std::printf("ok %.4f %.4f %.4f %ld\n", median(ms), *std::min_element(ms.begin(), ms.end()),
-                *std::max_element(ms.begin(), ms.end()), ownPeakRssKiB());
+    std::printf("ok %.4f %.4f %.4f %ld %.4f\n", median(cpu), *std::min_element(cpu.begin(), cpu.end()),
+                *std::max_element(cpu.begin(), cpu.end()), ownPeakRssKiB(), median(wall));
     return 0;
   } catch (const std::exception& e) {
     std::string message = e.what();

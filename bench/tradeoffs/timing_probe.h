@@ -18,7 +18,10 @@ struct ProbeRequest {
 struct ProbeResult {
   bool ok = false;
   std::string error;
+  // Process CPU time per frame (CLOCK_PROCESS_CPUTIME_ID): on a shared, loaded machine far steadier
+  // than wall time, which also counts the time other processes hold the core.
   double medianMs = 0.0, minMs = 0.0, maxMs = 0.0;
+  double wallMedianMs = 0.0;  // wall time per frame (steady_clock), for comparison
   long peakRssKiB = 0;  // VmHWM of the child: binary, libraries, scene and every buffer
 };
 
@@ -26,7 +29,7 @@ struct ProbeResult {
 ProbeResult runProbe(const std::string& self, const ProbeRequest& request);
 
 // The child's side: argv after "--probe" (scene method threads frames [overrides...]); prints
-// "ok median min max peakKiB" or "error message" on stdout. Returns the exit status.
+// "ok cpuMedian cpuMin cpuMax peakKiB wallMedian" or "error message" on stdout. Returns the exit status.
 int probeMain(const std::vector<std::string>& args);
 
 // Peak resident set of a child that loads nothing and renders nothing: the floor under every
