@@ -36,13 +36,7 @@ int runBench(const BenchArgs& args) {
   if (!scene) return kBadInput;
   FrameOptions options;
   options.threads = args.threads;
-  if (!args.method.empty()) {
-    options.method = parseShadowMethod(args.method);
-    if (!options.method) {
-      std::cerr << "--method: unknown method '" << args.method << "' (expected one of " << shadowMethodNames() << ")\n";
-      return kBadInput;
-    }
-  }
+  if (!parseMethodOrReport(args.method, options.method)) return kBadInput;
   const ShadowMethod method = options.method.value_or(scene->shadow.method);
   std::vector<double> frameMs;
   std::map<std::string, std::vector<double>> passMs;

@@ -5,6 +5,7 @@
 
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
+#include "shadow/shadow_method.h"
 
 namespace shadowref::cli {
 
@@ -25,6 +26,14 @@ std::optional<Scene> loadSceneOrReport(const SceneArgs& args) {
     std::cerr << (args.scene.empty() ? "<builtin:room>" : args.scene) << ": " << e.what() << '\n';
   }
   return std::nullopt;
+}
+
+bool parseMethodOrReport(const std::string& text, std::optional<ShadowMethod>& method) {
+  if (text.empty()) return true;
+  method = parseShadowMethod(text);
+  if (method) return true;
+  std::cerr << "--method: unknown method '" << text << "' (expected one of " << shadowMethodNames() << ")\n";
+  return false;
 }
 
 std::string defaultOutputPath(const std::string& scenePath, const std::string& extension) {

@@ -21,6 +21,9 @@ struct SceneArgs {
 // "file:line:col: message" on stderr and returns nullopt.
 std::optional<Scene> loadSceneOrReport(const SceneArgs& args);
 
+// --method: empty keeps the scene's method; an unknown name is reported on stderr (false).
+bool parseMethodOrReport(const std::string& text, std::optional<ShadowMethod>& method);
+
 // "out/room.png" for "scenes/room.yaml", "out/default.png" for the built-in scene.
 std::string defaultOutputPath(const std::string& scenePath, const std::string& extension);
 

@@ -133,13 +133,7 @@ int runRender(const RenderArgs& args) {
 
   FrameOptions options;
   options.threads = args.threads;
-  if (!args.method.empty()) {
-    options.method = parseShadowMethod(args.method);
-    if (!options.method) {
-      std::cerr << "--method: unknown method '" << args.method << "' (expected one of " << shadowMethodNames() << ")\n";
-      return kBadInput;
-    }
-  }
+  if (!parseMethodOrReport(args.method, options.method)) return kBadInput;
   std::vector<std::string> outputs = args.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
   for (const std::string& out : outputs) {

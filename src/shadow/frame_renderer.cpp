@@ -1,6 +1,7 @@
 #include "shadow/frame_renderer.h"
 
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 
 #include "raster/clear.h"
@@ -51,6 +52,12 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
 }
 
 }  // namespace
+
+std::string numberedPass(int& counter, const std::string& what) {
+  char number[16];
+  std::snprintf(number, sizeof number, "%02d-", ++counter);
+  return number + what;
+}
 
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
   const ShadowMethod method = options.method.value_or(scene.shadow.method);

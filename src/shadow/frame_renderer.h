@@ -56,6 +56,10 @@ struct FrameResult {
   std::vector<std::string> shadowMapNames;
 };
 
+// "01-ambient", "02-stencil-L0", ...: the next pass name of a frame, numbered in order so that
+// the --dump passes files sort as the passes ran.
+std::string numberedPass(int& counter, const std::string& what);
+
 // Throws std::runtime_error for a method this build cannot render.
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options = {});
 

@@ -118,12 +118,6 @@ void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
   }
 }
 
-std::string passName(int& counter, const std::string& what) {
-  char number[16];
-  std::snprintf(number, sizeof number, "%02d-", ++counter);
-  return number + what;
-}
-
 }  // namespace
 
 void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
@@ -150,7 +144,7 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
     for (const Light& light : frames[k])
       shadows.push_back(buildLightShadow(scene, instances, view, light, trapezoidal, renderer.threads(), result.stats));
     const auto mapsDone = std::chrono::steady_clock::now();
-    result.timings.push_back({passName(passCounter, "maps"), std::chrono::duration<double, std::milli>(mapsDone - start).count()});
+    result.timings.push_back({numberedPass(passCounter, "maps"), std::chrono::duration<double, std::milli>(mapsDone - start).count()});
     if (k == 0 && options.keepShadowMaps) keepShadowMaps(scene, instances, shadows, renderer.threads(), result);
     if (k == 0) {
       for (size_t i = 0; i < shadows.size(); ++i) {
@@ -166,14 +160,14 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
     clearColor(fb, state, glm::vec4(glm::vec3(scene.background), 1.0f));
     clearDepth(fb, state, 1.0);
     drawCameraPass(renderer, state, scene, view, prepared, shadows);
-    const std::string name = passName(passCounter, accumulating ? "camera-" + std::to_string(k) : "camera");
+    const std::string name = numberedPass(passCounter, accumulating ? "camera-" + std::to_string(k) : "camera");
     result.timings.push_back({name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mapsDone).count()});
     if (options.onPass) options.onPass(name, fb);
     if (accumulating) accumulate(fb, state, k == 0 ? AccumOp::Load : AccumOp::Accum, 1.0f / float(frames.size()));
   }
   if (accumulating) {
     accumulate(fb, state, AccumOp::Return, 1.0f);
-    if (options.onPass) options.onPass(passName(passCounter, "return"), fb);
+    if (options.onPass) options.onPass(numberedPass(passCounter, "return"), fb);
   }
 }
 

@@ -150,12 +150,6 @@ std::string lightNote(size_t index, const Light& light, const LightTotals& t, co
   return s.str();
 }
 
-std::string passName(int& counter, const std::string& what) {
-  char number[16];
-  std::snprintf(number, sizeof number, "%02d-", ++counter);
-  return number + what;
-}
-
 }  // namespace
 
 void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
@@ -169,7 +163,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
   auto pass = [&](const std::string& what, auto&& fn) {
     const auto start = std::chrono::steady_clock::now();
     fn();
-    const std::string name = passName(passCounter, what);
+    const std::string name = numberedPass(passCounter, what);
     result.timings.push_back({name, millisecondsSince(start)});
     if (options.onPass) options.onPass(name, fb);
   };
