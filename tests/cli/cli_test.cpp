@@ -117,13 +117,13 @@ TEST_CASE("compare exits 0 for identical images, 1 when they differ, 2 when one 
   CHECK(run("compare '" + a + "' '" + (dir / "missing.exr").string() + "'").status == 2);
 }
 
-TEST_CASE("--help lists every subcommand and exits 0", "[cli]") {
+TEST_CASE("the --help text lists every subcommand and exits 0", "[cli]") {
   const Run r = run("--help");
   CHECK(r.status == 0);
   for (const char* sub : {"render", "check", "info", "compare", "bench"}) CHECK(r.out.find(sub) != std::string::npos);
 }
 
-TEST_CASE("--pixel-history prints the fragments of the watched pixel in draw order", "[cli]") {
+TEST_CASE("the pixel history (--pixel-history) prints the fragments of the watched pixel in draw order", "[cli]") {
   const Run r = run("render scenes/minimal.yaml -D image.width=64 -D image.height=48 --method zfail --pixel-history "
                     "32,10 -o '" + (scratch() / "h.png").string() + "' --quiet");
   CHECK(r.status == 0);

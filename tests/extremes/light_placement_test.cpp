@@ -117,7 +117,7 @@ TEST_CASE("A light exactly on the ground's top face is a documented limit: the s
     shadedLitBox += frame.stencilPerLight[0][i] != 0;
   }
   INFO("box pixels the light reaches: " << litBox << ", of them shadowed by the stencil: " << shadedLitBox);
-  CHECK(litBox > 100);
+  CHECK(litBox > 50);  // 91 at the 80 x 64 of sanitizer builds, 449 at 160 x 128
   CHECK(shadedLitBox == litBox);  // the correct answer would be 0
 }
 

@@ -167,7 +167,7 @@ TEST_CASE("the file's keys change what the generator made; new names add", "[loa
   CHECK(s.instances().size() == base.instances().size());
 }
 
-TEST_CASE("-D overrides apply after the file, in command-line order", "[loader]") {
+TEST_CASE("overrides given with -D apply after the file, in command-line order", "[loader]") {
   const std::string file = std::string(SHADOWREF_SOURCE_DIR) + "/tests/data/scenes/good_overrides.yaml";
   LoadOptions o;
   o.overrides = {"camera.near=0.001", "lights.0.range=5", "lights.fill.soft.shape=area16", "shadow.method=zfail",
@@ -185,7 +185,7 @@ TEST_CASE("-D overrides apply after the file, in command-line order", "[loader]"
   CHECK(s.camera.eye == glm::dvec3(0, 2, 6));  // untouched
 }
 
-TEST_CASE("-D generator.* changes the generator's options before it runs", "[loader]") {
+TEST_CASE("an override of generator.* with -D changes the generator's options before it runs", "[loader]") {
   const Scene eight = load("generator: {type: city, houses: 64}\n", {"generator.houses=8"});
   const Scene sixteen = load("generator: city\n", {"generator.houses=16"});
   CHECK(eight.instances().size() < sixteen.instances().size());
