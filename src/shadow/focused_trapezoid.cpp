@@ -86,42 +86,14 @@ Trapezoid focusedTrapezoid(const std::array<glm::dvec4, 8>& frustumClip, const g
   tz.deltaPrime = glm::dot(tz.focusPoint - nearCentre, d) - sMin;
   const double denominator = tz.lambda - 2.0 * tz.deltaPrime - tz.lambda * kEightyPercentLine;
 
-  // 5. Side lines through the outermost points.
+  // 5. Side lines through the outermost points, 6. N_T — as in computeTrapezoid; a body without
+  // width falls back to the bounding rectangle.
   if (!(denominator > 0.0)) {
-    double bMin = kInfinity, bMax = -kInfinity;
-    for (const glm::dvec2& q : p) {
-      bMin = std::min(bMin, glm::dot(q - nearCentre, n));
-      bMax = std::max(bMax, glm::dot(q - nearCentre, n));
-    }
-    if (!(bMax > bMin)) return boundingRectangle(p);
-    tz.parallelSides = true;
-    tz.eta = kInfinity;
-    tz.t[0] = nearCentre + sMax * d + bMin * n;
-    tz.t[1] = nearCentre + sMax * d + bMax * n;
-    tz.t[2] = nearCentre + sMin * d + bMax * n;
-    tz.t[3] = nearCentre + sMin * d + bMin * n;
-    tz.NT = parallelogramToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
+    if (!fitParallelSides(tz, p, nearCentre, d, n, sMin, sMax)) return boundingRectangle(p);
     return tz;
   }
-  tz.eta = std::max(trapezoidEta(tz.lambda, tz.deltaPrime), 1e-9 * tz.lambda);
-  tz.apex = nearCentre + (sMin - tz.eta) * d;
-  double leftSlope = -kInfinity, rightSlope = kInfinity;
-  for (const glm::dvec2& q : p) {
-    const glm::dvec2 v = q - tz.apex;
-    const double slope = glm::dot(v, n) / glm::dot(v, d);
-    leftSlope = std::max(leftSlope, slope);
-    rightSlope = std::min(rightSlope, slope);
-  }
   // A body seen edge-on from q (all points on one line) has no trapezoid.
-  if (!(leftSlope > rightSlope)) return boundingRectangle(p);
-  const double aTop = tz.eta, aBase = tz.eta + tz.lambda;
-  tz.t[0] = tz.apex + aBase * d + rightSlope * aBase * n;
-  tz.t[1] = tz.apex + aBase * d + leftSlope * aBase * n;
-  tz.t[2] = tz.apex + aTop * d + leftSlope * aTop * n;
-  tz.t[3] = tz.apex + aTop * d + rightSlope * aTop * n;
-
-  // 6. N_T (002 §4.1.2, 8 steps).
-  tz.NT = trapezoidToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
+  if (!fitSideLinesFromApex(tz, p, nearCentre, d, n, sMin)) return boundingRectangle(p);
   return tz;
 }
 

@@ -139,31 +139,40 @@ Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& clip, double focusRe
   tz.deltaPrime = glm::dot(tz.focusPoint - nearCentre, d) - sMin;
   const double denominator = tz.lambda - 2.0 * tz.deltaPrime - tz.lambda * kEightyPercentLine;
 
-  // 5. The side lines, through the outermost corners as seen from q.
-  if (!(denominator > 0.0)) {
-    // η = ∞: q at infinity, parallel side lines along the centre line.
-    double bMin = kInfinity, bMax = -kInfinity;
-    for (const glm::dvec2& q : p) {
-      bMin = std::min(bMin, glm::dot(q - nearCentre, n));
-      bMax = std::max(bMax, glm::dot(q - nearCentre, n));
-    }
-    tz.parallelSides = true;
-    tz.eta = kInfinity;
-    tz.t[0] = nearCentre + sMax * d + bMin * n;
-    tz.t[1] = nearCentre + sMax * d + bMax * n;
-    tz.t[2] = nearCentre + sMin * d + bMax * n;
-    tz.t[3] = nearCentre + sMin * d + bMin * n;
-    tz.NT = parallelogramToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
-    return tz;
+  // 5. The side lines, through the outermost corners as seen from q; 6. N_T.
+  if (!(denominator > 0.0)) fitParallelSides(tz, p, nearCentre, d, n, sMin, sMax);  // η = ∞
+  else fitSideLinesFromApex(tz, p, nearCentre, d, n, sMin);
+  return tz;
+}
+
+bool fitParallelSides(Trapezoid& tz, std::span<const glm::dvec2> points, const glm::dvec2& nearCentre,
+                      const glm::dvec2& d, const glm::dvec2& n, double sMin, double sMax) {
+  // q at infinity: side lines parallel to the centre line.
+  double bMin = kInfinity, bMax = -kInfinity;
+  for (const glm::dvec2& q : points) {
+    bMin = std::min(bMin, glm::dot(q - nearCentre, n));
+    bMax = std::max(bMax, glm::dot(q - nearCentre, n));
   }
+  tz.parallelSides = true;
+  tz.eta = kInfinity;
+  tz.t[0] = nearCentre + sMax * d + bMin * n;
+  tz.t[1] = nearCentre + sMax * d + bMax * n;
+  tz.t[2] = nearCentre + sMin * d + bMax * n;
+  tz.t[3] = nearCentre + sMin * d + bMin * n;
+  tz.NT = parallelogramToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
+  return bMax > bMin;
+}
+
+bool fitSideLinesFromApex(Trapezoid& tz, std::span<const glm::dvec2> points, const glm::dvec2& nearCentre,
+                          const glm::dvec2& d, const glm::dvec2& n, double sMin) {
   // δ' = 0 (focusRegion 0 with the near centre on the top line) would put q on the top line and
   // collapse t2, t3; keep q a hair behind it.
   tz.eta = std::max(trapezoidEta(tz.lambda, tz.deltaPrime), 1e-9 * tz.lambda);
   tz.apex = nearCentre + (sMin - tz.eta) * d;
 
-  // Slopes b/a of each corner seen from q, in the (d, n) frame: every corner has a ≥ η > 0.
+  // Slopes b/a of each point seen from q, in the (d, n) frame: every point has a >= η > 0.
   double leftSlope = -kInfinity, rightSlope = kInfinity;
-  for (const glm::dvec2& q : p) {
+  for (const glm::dvec2& q : points) {
     const glm::dvec2 v = q - tz.apex;
     const double slope = glm::dot(v, n) / glm::dot(v, d);
     leftSlope = std::max(leftSlope, slope);
@@ -177,7 +186,7 @@ Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& clip, double focusRe
 
   // 6. N_T (002 §4.1.2, 8 steps).
   tz.NT = trapezoidToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
-  return tz;
+  return leftSlope > rightSlope;
 }
 
 TrapezoidalView trapezoidalView(const Camera& camera, double aspect, const LightView& light,

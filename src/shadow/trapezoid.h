@@ -50,6 +50,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 
 #include <glm/glm.hpp>
 
@@ -102,6 +103,19 @@ bool nearPlaneInsideFarPlane(const std::array<glm::dvec2, 8>& p);
 // light the frustum must lie in front of the light; otherwise NT is the identity, fallback set).
 // focusRegion in (0, 1); 002 uses 0.4.
 Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& frustumCornersLightClip, double focusRegion);
+
+// Steps 5 and 6 of 002 §4.1.2, shared by computeTrapezoid and focusedTrapezoid. The frame: the
+// centre line from `nearCentre` along the unit vector d, its unit normal n, the top line at
+// s = sMin and the base line at s = sMax along d; tz.lambda and tz.deltaPrime are set.
+// η = ∞: parallel side lines through the outermost points, N_T the parallelogram fit. Returns
+// false when the points have no width across the centre line (the trapezoid is still filled).
+bool fitParallelSides(Trapezoid& tz, std::span<const glm::dvec2> points, const glm::dvec2& nearCentre,
+                      const glm::dvec2& d, const glm::dvec2& n, double sMin, double sMax);
+// Finite η: the apex q at η behind the top line, the side lines from q through the outermost
+// points, the corners t0…t3 and N_T. Returns false when every point lies on one line through q
+// (no trapezoid; the corners are still filled).
+bool fitSideLinesFromApex(Trapezoid& tz, std::span<const glm::dvec2> points, const glm::dvec2& nearCentre,
+                          const glm::dvec2& d, const glm::dvec2& n, double sMin);
 
 // One frame's trapezoidal shadow map, put together (002 Listings 9, 11, 12): the camera frustum,
 // its far plane fitted to the scene (fitFarToBounds), in the light's clip space; the trapezoid;
