@@ -1,6 +1,8 @@
 #include "raster/fragment_processor.h"
 
 #include <algorithm>
+#include <bit>
+#include <type_traits>
 
 #include "raster/fragment_ops.h"
 
@@ -19,6 +21,8 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   varyingCount_ = shader ? shader->varyingCount() : 0;
   depthLo_ = std::min(state.viewport.nearVal, state.viewport.farVal);
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
+  spanLoop_ = chooseSpanLoop();
+  if (writesColor_) constantColor_ = shader->constantColor();
 }
 
 double FragmentProcessor::fragmentDepth(const TriangleSetup& t, int x, int y) const {
@@ -118,6 +122,252 @@ void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_
     if constexpr (watched) event.colorAfter = dst;
   }
   if constexpr (watched) watch_->observer->onFragment(event);
+}
+
+namespace {
+
+// The depth test with its function fixed at compile time, so the span loops carry no switch.
+template <CompareFunc F>
+inline bool passes(uint32_t incoming, uint32_t stored) {
+  if constexpr (F == CompareFunc::Never) return false;
+  else if constexpr (F == CompareFunc::Less) return incoming < stored;
+  else if constexpr (F == CompareFunc::Equal) return incoming == stored;
+  else if constexpr (F == CompareFunc::LEqual) return incoming <= stored;
+  else if constexpr (F == CompareFunc::Greater) return incoming > stored;
+  else if constexpr (F == CompareFunc::NotEqual) return incoming != stored;
+  else if constexpr (F == CompareFunc::GEqual) return incoming >= stored;
+  else return true;
+}
+
+template <class Fn>
+void withCompare(CompareFunc f, Fn&& fn) {
+  switch (f) {
+    case CompareFunc::Never: fn(std::integral_constant<CompareFunc, CompareFunc::Never>{}); return;
+    case CompareFunc::Less: fn(std::integral_constant<CompareFunc, CompareFunc::Less>{}); return;
+    case CompareFunc::Equal: fn(std::integral_constant<CompareFunc, CompareFunc::Equal>{}); return;
+    case CompareFunc::LEqual: fn(std::integral_constant<CompareFunc, CompareFunc::LEqual>{}); return;
+    case CompareFunc::Greater: fn(std::integral_constant<CompareFunc, CompareFunc::Greater>{}); return;
+    case CompareFunc::NotEqual: fn(std::integral_constant<CompareFunc, CompareFunc::NotEqual>{}); return;
+    case CompareFunc::GEqual: fn(std::integral_constant<CompareFunc, CompareFunc::GEqual>{}); return;
+    case CompareFunc::Always: fn(std::integral_constant<CompareFunc, CompareFunc::Always>{}); return;
+  }
+}
+
+// What KEEP, INCR_WRAP and DECR_WRAP with a full write mask do to a stencil byte: add 0, 1 or 255
+// modulo 256. Other ops (saturating, REPLACE, INVERT, ZERO) have no such form.
+bool wrapDelta(StencilOp op, uint8_t& delta) {
+  switch (op) {
+    case StencilOp::Keep: delta = 0; return true;
+    case StencilOp::IncrWrap: delta = 1; return true;
+    case StencilOp::DecrWrap: delta = 255; return true;
+    default: return false;
+  }
+}
+
+}  // namespace
+
+FragmentProcessor::SpanLoop FragmentProcessor::chooseSpanLoop() const {
+  if (writesColor_ || writesDepth_ || !usesStencil_) {
+    return !writesColor_ && !usesStencil_ ? SpanLoop::DepthOnly : SpanLoop::General;
+  }
+  for (const StencilFaceState& s : state_.stencil) {
+    uint8_t delta;
+    if (s.func != CompareFunc::Always || s.writeMask != 0xFF || !wrapDelta(s.dpfail, delta) || !wrapDelta(s.dppass, delta))
+      return SpanLoop::General;
+  }
+  return SpanLoop::StencilCount;
+}
+
+void FragmentProcessor::processSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]) {
+  if (watch_ && watch_->observer && y == watch_->y && watch_->x >= xl && watch_->x <= xr) [[unlikely]] {
+    const int wx = watch_->x;
+    if (wx > xl) runSpan(t, y, xl, wx - 1, e);
+    int64_t ew[3];
+    for (int i = 0; i < 3; ++i) ew[i] = e[i] + t.stepX[i] * (wx - xl);
+    processImpl<true>(t, wx, y, ew[0], ew[1], ew[2]);
+    if (wx < xr) {
+      for (int i = 0; i < 3; ++i) ew[i] += t.stepX[i];
+      runSpan(t, y, wx + 1, xr, ew);
+    }
+    return;
+  }
+  runSpan(t, y, xl, xr, e);
+}
+
+void FragmentProcessor::runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]) {
+  uint32_t codes[kChunk];
+  stats_.fragments += uint64_t(xr - xl + 1);
+  for (int x = xl; x <= xr; x += kChunk) {
+    const int n = std::min(kChunk, xr - x + 1);
+    depthCodes(t, y, x, n, codes);
+    const size_t at = fb_.index(x, y);
+    switch (spanLoop_) {
+      case SpanLoop::StencilCount: stencilCountChunk(t, at, n, codes); break;
+      case SpanLoop::DepthOnly: depthOnlyChunk(at, n, codes); break;
+      case SpanLoop::General: generalChunk(t, y, x, n, codes, xl, e); break;
+    }
+  }
+}
+
+// fragmentDepth and DepthCodec::encode for n pixels of a row: the same operations in the same
+// order, so the same bits (planeDepthAt's sum is split into its row part and its column part).
+void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const {
+  const double rowPart = t.dzdy * ((double(y) + 0.5) - t.v[0].fy);
+  const double z0 = t.v[0].z, fx0 = t.v[0].fx, dzdx = t.dzdx, offset = t.depthOffset;
+  double z[kChunk];
+  for (int i = 0; i < n; ++i) z[i] = (z0 + (dzdx * ((double(x + i) + 0.5) - fx0) + rowPart)) + offset;
+  if (state_.depthClamp)
+    for (int i = 0; i < n; ++i) z[i] = std::clamp(z[i], depthLo_, depthHi_);
+  if (fb_.depthCodec().format == DepthFormat::Float32) {
+    for (int i = 0; i < n; ++i) {
+      const double c = z[i] > 0.0 ? std::min(z[i], 1.0) : 0.0;
+      codes[i] = std::bit_cast<uint32_t>(float(c));
+    }
+  } else {
+    for (int i = 0; i < n; ++i) codes[i] = fb_.depthCodec().encode(z[i]);
+  }
+}
+
+// Shadow-volume counting: the stencil test always passes, so each fragment adds the byte of its
+// outcome (depth pass or fail) for its facing, modulo 256.
+void FragmentProcessor::stencilCountChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes) {
+  const StencilFaceState& face = state_.stencil[t.facing];
+  uint8_t onPass = 0, onFail = 0;
+  wrapDelta(face.dppass, onPass);
+  wrapDelta(face.dpfail, onFail);
+  uint8_t* stencil = fb_.stencil().data() + at;
+  int failed = 0;
+  if (!usesDepth_) {
+    for (int i = 0; i < n; ++i) stencil[i] = uint8_t(stencil[i] + onPass);
+  } else {
+    const uint32_t* depth = fb_.depthCodes().data() + at;
+    withCompare(state_.depthFunc, [&](auto f) {
+      for (int i = 0; i < n; ++i) {
+        const bool pass = passes<decltype(f)::value>(codes[i], depth[i]);
+        failed += !pass;
+        stencil[i] = uint8_t(stencil[i] + (pass ? onPass : onFail));
+      }
+    });
+  }
+  stats_.depthFailed += uint64_t(failed);
+  stats_.stencilWrites += uint64_t(onPass != 0 ? n - failed : 0) + uint64_t(onFail != 0 ? failed : 0);
+}
+
+// Depth (and nothing else): the shadow maps' pass.
+void FragmentProcessor::depthOnlyChunk(size_t at, int n, const uint32_t* codes) {
+  if (!usesDepth_) return;
+  uint32_t* depth = fb_.depthCodes().data() + at;
+  int failed = 0;
+  withCompare(state_.depthFunc, [&](auto f) {
+    for (int i = 0; i < n; ++i) {
+      if (passes<decltype(f)::value>(codes[i], depth[i])) {
+        if (writesDepth_) depth[i] = codes[i];
+      } else {
+        ++failed;
+      }
+    }
+  });
+  stats_.depthFailed += uint64_t(failed);
+}
+
+// processImpl<false> for a chunk: every test and write per fragment in GL order; the fragments
+// that reach colour are shaded afterwards, together, and written by writeColors.
+void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl,
+                                     const int64_t e[3]) {
+  const size_t at = fb_.index(x, y);
+  int survivors[kChunk];
+  const int survived = testChunk(t, at, n, codes, survivors);
+  if (survived == 0 || !writesColor_) return;
+  stats_.colorWrites += uint64_t(survived);
+  glm::vec4* color = fb_.color().data() + at;
+  if (constantColor_) {
+    writeColors(color, survivors, survived, nullptr);
+    return;
+  }
+  // Varyings at each survivor, then one call to the shader for all of them.
+  FragmentInput inputs[kChunk];
+  double varyings[kChunk][kMaxVaryings];
+  glm::dvec4 shaded[kChunk];
+  for (int k = 0; k < survived; ++k) {
+    const int i = survivors[k];
+    const int64_t dx = x + i - xl;
+    interpolateVaryings(t, e[0] + t.stepX[0] * dx, e[1] + t.stepX[1] * dx, e[2] + t.stepX[2] * dx, varyings[k]);
+    FragmentInput& in = inputs[k];
+    in.x = x + i;
+    in.y = y;
+    in.depth = fb_.depthCodec().decode(codes[i]);
+    in.facing = t.facing;
+    in.varyings = varyings[k];
+  }
+  shader_->shadeBatch(inputs, survived, shaded);
+  writeColors(color, survivors, survived, shaded);
+}
+
+// Stencil test, depth test, stencil update and depth write for a chunk, as processImpl does them;
+// returns how many fragments passed both tests and lists them in `survivors`.
+int FragmentProcessor::testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors) {
+  const StencilFaceState& sface = state_.stencil[t.facing];
+  uint8_t* stencil = usesStencil_ ? fb_.stencil().data() + at : nullptr;
+  uint32_t* depth = usesDepth_ ? fb_.depthCodes().data() + at : nullptr;
+  int survived = 0;
+  uint64_t stencilFailed = 0, depthFailed = 0, stencilWrites = 0;
+  auto updateStencil = [&](int i, StencilOp op) {
+    const uint8_t next = writeStencil(stencil[i], applyStencilOp(op, stencil[i], sface.ref), sface.writeMask);
+    stencilWrites += next != stencil[i];
+    stencil[i] = next;
+  };
+  withCompare(depth ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
+    for (int i = 0; i < n; ++i) {
+      if (stencil && !stencilTest(sface, stencil[i])) {
+        ++stencilFailed;
+        updateStencil(i, sface.sfail);
+        continue;
+      }
+      const bool depthPassed = passes<decltype(f)::value>(codes[i], depth ? depth[i] : 0);
+      if (stencil) updateStencil(i, depthPassed ? sface.dppass : sface.dpfail);
+      if (!depthPassed) {
+        ++depthFailed;
+        continue;
+      }
+      if (writesDepth_) depth[i] = codes[i];
+      survivors[survived++] = i;
+    }
+  });
+  stats_.stencilFailed += stencilFailed;
+  stats_.depthFailed += depthFailed;
+  stats_.stencilWrites += stencilWrites;
+  return survived;
+}
+
+// blend() and writeColor() for the survivors; `shaded` is nullptr for a constant colour. The two
+// cases every frame has — no blending with all channels written, and ONE/ONE (the lit passes'
+// sum) — skip the general blend's per-channel factor switches (x * 1.0 is x exactly, and
+// 0 * x + s is s, so they give the same bits).
+void FragmentProcessor::writeColors(glm::vec4* color, const int* survivors, int count, const glm::dvec4* shaded) const {
+  const BlendState& b = state_.blend;
+  const bool allChannels = state_.colorMask[0] && state_.colorMask[1] && state_.colorMask[2] && state_.colorMask[3];
+  auto source = [&](int k) -> const glm::dvec4& { return shaded ? shaded[k] : *constantColor_; };
+  if (allChannels && !b.enabled) {
+    if (!shaded) {
+      const glm::vec4 value = writeColor(glm::vec4(0.0f), *constantColor_, state_.colorMask);
+      for (int k = 0; k < count; ++k) color[survivors[k]] = value;
+      return;
+    }
+    for (int k = 0; k < count; ++k) color[survivors[k]] = writeColor(glm::vec4(0.0f), shaded[k], state_.colorMask);
+    return;
+  }
+  if (allChannels && b.enabled && b.src == BlendFactor::One && b.dst == BlendFactor::One) {
+    for (int k = 0; k < count; ++k) {
+      glm::vec4& dst = color[survivors[k]];
+      const glm::dvec4 sum = glm::clamp(source(k), 0.0, 1.0) + glm::dvec4(dst);
+      dst = writeColor(dst, sum, state_.colorMask);
+    }
+    return;
+  }
+  for (int k = 0; k < count; ++k) {
+    glm::vec4& dst = color[survivors[k]];
+    dst = writeColor(dst, blend(b, source(k), glm::dvec4(dst)), state_.colorMask);
+  }
 }
 
 template void FragmentProcessor::processImpl<false>(const TriangleSetup&, int, int, int64_t, int64_t, int64_t);

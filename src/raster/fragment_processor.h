@@ -2,6 +2,14 @@
 // operations of fragment_ops.h in order, then the writes. Colour work (shading, blending) is done
 // only for fragments that survive the stencil and depth tests and only when colour is written at
 // all, so stencil-only passes (shadow volumes) never shade.
+//
+// The rasterizer hands over a row span at a time. A span runs in chunks: first the depth codes of
+// the whole chunk (the same formula per pixel as planeDepthAt, in a loop the compiler vectorises),
+// then one of three loops chosen once per draw from the state — stencil counting (volume passes:
+// no colour, no depth write, stencil ALWAYS with KEEP/INCR_WRAP/DECR_WRAP), depth only (shadow
+// maps), or the general loop, which shades the chunk's surviving fragments after their tests.
+// Each pixel is touched once per triangle, so the order inside a span changes no byte. The watched
+// pixel (pixel history) always takes the one-fragment path, which records every step.
 #pragma once
 
 #include "raster/fragment_observer.h"
@@ -32,7 +40,22 @@ class FragmentProcessor {
       processImpl<false>(t, x, y, e0, e1, e2);
   }
 
+  // Every pixel of row y from xl to xr (inclusive); e holds the unbiased edge values at (xl, y).
+  void processSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
+
  private:
+  enum class SpanLoop : uint8_t { StencilCount, DepthOnly, General };
+  static constexpr int kChunk = 64;
+
+  SpanLoop chooseSpanLoop() const;
+  void runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
+  void depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const;
+  void stencilCountChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes);
+  void depthOnlyChunk(size_t at, int n, const uint32_t* codes);
+  void generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl, const int64_t e[3]);
+  int testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors);
+  void writeColors(glm::vec4* color, const int* survivors, int count, const glm::dvec4* shaded) const;
+
   // One body for both paths; the watched one also records a FragmentEvent (pixel history).
   template <bool Watched>
   void processImpl(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2);
@@ -48,6 +71,8 @@ class FragmentProcessor {
   bool writesColor_, usesDepth_, writesDepth_, usesStencil_;
   int varyingCount_;
   double depthLo_, depthHi_;
+  SpanLoop spanLoop_;
+  const glm::dvec4* constantColor_ = nullptr;  // the shader's colour when it has only one
 };
 
 }  // namespace shadowref

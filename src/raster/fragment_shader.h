@@ -21,6 +21,13 @@ class FragmentShader {
   // How many varyings of the vertices this shader reads; the rasterizer interpolates only those.
   virtual int varyingCount() const = 0;
   virtual glm::dvec4 shade(const FragmentInput& in) const = 0;
+  // The colour every fragment gets when it does not depend on the fragment, else nullptr: the
+  // rasterizer then skips interpolation and the call per fragment.
+  virtual const glm::dvec4* constantColor() const { return nullptr; }
+  // shade() for `count` fragments; a shader overrides it to save the call per fragment.
+  virtual void shadeBatch(const FragmentInput* in, int count, glm::dvec4* out) const {
+    for (int i = 0; i < count; ++i) out[i] = shade(in[i]);
+  }
 };
 
 // Outputs the first four varyings as RGBA: flat or Gouraud colour, and the conformance tests.
@@ -38,6 +45,7 @@ class ConstantColorShader final : public FragmentShader {
   explicit ConstantColorShader(const glm::dvec4& color) : color_(color) {}
   int varyingCount() const override { return 0; }
   glm::dvec4 shade(const FragmentInput&) const override { return color_; }
+  const glm::dvec4* constantColor() const override { return &color_; }
 
  private:
   glm::dvec4 color_;

@@ -39,6 +39,24 @@ glm::dvec3 ambientTerm(const PhongMaterial& m, const glm::dvec3& globalAmbient);
 glm::dvec3 lightContribution(const PhongLight& light, const PhongMaterial& m, const glm::dvec3& p,
                              const glm::dvec3& n, const glm::dvec3& eye);
 
+// A light and a material with everything that does not depend on the point worked out once: the
+// light's position divided by w, its normalised direction or spot axis, kd * Id and ks * Is. The
+// per-point arithmetic left is lightContribution's, operation for operation, so the result has
+// the same bits; shaders make these once per draw instead of once per fragment.
+struct LightTerms {
+  bool directional = false, spot = false, specular = false, blinn = false;
+  glm::dvec3 direction{0.0};   // directional: unit vector towards the light
+  glm::dvec3 point{0.0};       // point and spot: the light's position
+  glm::dvec3 attenuation{1.0, 0.0, 0.0};
+  glm::dvec3 spotAxis{0.0};    // normalised spot direction
+  double spotCosCutoff = -1.0, spotExponent = 0.0;
+  glm::dvec3 diffuse{0.0}, specularColor{0.0};  // kd * Id, ks * Is
+  double shininess = 0.0;
+};
+
+LightTerms lightTerms(const PhongLight& light, const PhongMaterial& m);
+glm::dvec3 lightContribution(const LightTerms& light, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& eye);
+
 // What a shader adds up: optionally the ambient term, plus the listed lights.
 struct LightingSetup {
   PhongMaterial material;
@@ -59,16 +77,22 @@ inline constexpr int kVaryingColor = 0;
 // Per-pixel Phong: interpolated position and normal, normal renormalised, lighting per fragment.
 // A fragment of a back-facing polygon is lit with the normal flipped (two-sided lighting), so
 // the inside of a closed room is lit correctly.
-class PerPixelLightingShader : public FragmentShader {
+class PerPixelLightingShader final : public FragmentShader {
  public:
-  explicit PerPixelLightingShader(const LightingSetup& setup) : setup_(setup) {}
+  explicit PerPixelLightingShader(const LightingSetup& setup);
   int varyingCount() const override { return 6; }
   glm::dvec4 shade(const FragmentInput& in) const override;
+  void shadeBatch(const FragmentInput* in, int count, glm::dvec4* out) const override;
 
- protected:
+ private:
   glm::dvec3 litColor(const FragmentInput& in) const;
-  const LightingSetup& setup_;
+  glm::dvec3 base_;  // the ambient term, or 0
+  std::vector<LightTerms> terms_;
+  glm::dvec3 eye_;
 };
+
+// The interpolated normal of a per-pixel shader, renormalised, flipped for a back face.
+glm::dvec3 fragmentNormal(const FragmentInput& in);
 
 // Gouraud: the colour was computed per vertex (gouraudVertexColor) and is only interpolated.
 class GouraudShader final : public FragmentShader {

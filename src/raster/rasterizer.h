@@ -58,4 +58,39 @@ void rasterizeTriangle(const TriangleSetup& t, const Rect& region, Sink&& sink) 
   }
 }
 
+// The same coverage as rasterizeTriangle, delivered as one interval per row: a triangle is
+// convex, so the covered centres of a row are contiguous. The interval comes from the same integer
+// edge functions by exact division (E + bias >= 0 solved for x), so every pixel is covered here
+// exactly when rasterizeTriangle covers it. Sink: void(int y, int xl, int xr, const int64_t e[3])
+// with the unbiased edge values at (xl, y); rows bottom to top.
+template <class SpanSink>
+void rasterizeSpans(const TriangleSetup& t, const Rect& region, SpanSink&& sink) {
+  const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
+  const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
+  if (x0 > x1 || y0 > y1) return;
+  int64_t row[3];
+  for (int i = 0; i < 3; ++i) row[i] = t.edgeAt(i, x0, y0) + t.bias[i];
+  for (int y = y0; y <= y1; ++y) {
+    // Offsets from x0 of the first and last covered pixel: lo <= x - x0 <= hi.
+    int64_t lo = 0, hi = x1 - x0;
+    for (int i = 0; i < 3 && lo <= hi; ++i) {
+      const int64_t e = row[i], s = t.stepX[i];
+      if (s > 0) {
+        if (e < 0) lo = std::max(lo, (-e + s - 1) / s);  // ceil(-e / s)
+      } else if (s < 0) {
+        if (e < 0) hi = -1;
+        else hi = std::min(hi, e / -s);                   // floor(e / -s)
+      } else if (e < 0) {
+        hi = -1;
+      }
+    }
+    if (lo <= hi) {
+      int64_t e[3];
+      for (int i = 0; i < 3; ++i) e[i] = row[i] + t.stepX[i] * lo - t.bias[i];
+      sink(y, x0 + int(lo), x0 + int(hi), e);
+    }
+    for (int i = 0; i < 3; ++i) row[i] += t.stepY[i];
+  }
+}
+
 }  // namespace shadowref

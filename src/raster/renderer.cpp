@@ -1,6 +1,7 @@
 #include "raster/renderer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 
 #include "raster/rasterizer.h"
@@ -32,7 +33,16 @@ void canonicalRotation(const ClipVertex*& a, const ClipVertex*& b, const ClipVer
 
 }  // namespace
 
-Renderer::Renderer(Framebuffer& framebuffer, int threads) : fb_(framebuffer) { setThreads(threads); }
+namespace {
+std::atomic<bool> referencePathForNewRenderers{false};
+}  // namespace
+
+void Renderer::useReferencePath(bool on) { referencePathForNewRenderers = on; }
+
+Renderer::Renderer(Framebuffer& framebuffer, int threads)
+    : fb_(framebuffer), referencePath_(referencePathForNewRenderers) {
+  setThreads(threads);
+}
 
 void Renderer::setThreads(int threads) {
   if (threads <= 0) threads = defaultThreadCount();
@@ -161,15 +171,22 @@ int64_t candidatePixels(const std::vector<TriangleSetup>& setups, const Rect& r)
 }
 }  // namespace
 
+void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const {
+  if (referencePath_) {
+    rasterizeTriangle(t, region, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
+      fragments.process(t, x, y, e0, e1, e2);
+    });
+    return;
+  }
+  rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { fragments.processSpan(t, y, xl, xr, e); });
+}
+
 void Renderer::rasterizeAll(const DrawCall& call, const Rect& region) {
   const RenderState& state = *call.state;
   const int bands = (region.height + kBandRows - 1) / kBandRows;
   if (!pool_ || bands < 2 || candidatePixels(setups_, region) < kParallelThreshold) {
     FragmentProcessor fragments(fb_, state, call.shader, stats_, &watch_);
-    for (const TriangleSetup& t : setups_)
-      rasterizeTriangle(t, region, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
-        fragments.process(t, x, y, e0, e1, e2);
-      });
+    for (const TriangleSetup& t : setups_) rasterizeOne(t, region, fragments);
     return;
   }
   // Each band of rows belongs to one task, which replays every triangle in submission order.
@@ -181,9 +198,7 @@ void Renderer::rasterizeAll(const DrawCall& call, const Rect& region) {
     FragmentProcessor fragments(fb_, state, call.shader, bandStats_[size_t(b)], &watch_);
     for (const TriangleSetup& t : setups_) {
       if (t.maxY < band.y || t.minY >= band.y + band.height) continue;
-      rasterizeTriangle(t, band, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
-        fragments.process(t, x, y, e0, e1, e2);
-      });
+      rasterizeOne(t, band, fragments);
     }
   });
   for (const RasterStats& s : bandStats_) stats_ += s;

@@ -43,6 +43,11 @@ class Renderer {
   // test is on, stencil when the stencil test is on), then draws.
   void draw(const DrawCall& call);
 
+  // The reference path: every fragment of every Renderer made after this call goes through the
+  // one-fragment function the pixel history uses, instead of the span loops. Tests render with
+  // both and require the same bytes; nothing else should switch it.
+  static void useReferencePath(bool on);
+
   Framebuffer& framebuffer() { return fb_; }
   const RasterStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
@@ -61,6 +66,7 @@ class Renderer {
                 const RenderState& state);
 
   void rasterizeAll(const DrawCall& call, const Rect& region);
+  void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 
   Framebuffer& fb_;
   std::unique_ptr<ThreadPool> pool_;
@@ -68,6 +74,7 @@ class Renderer {
   RasterStats stats_;
   PixelWatch watch_;
   uint64_t drawCount_ = 0;
+  bool referencePath_;
   // Per-draw scratch, kept to avoid allocation per call.
   std::vector<TriangleSetup> setups_;
   std::deque<ClipVertex> clippedVertices_;  // stable addresses for WindowVertex::source

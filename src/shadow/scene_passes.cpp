@@ -96,6 +96,15 @@ void drawInstance(Renderer& renderer, const RenderState& state, const PreparedIn
   call.state = &stateFor(state, *p.instance, mirrored);
   call.indices = p.indices;
   call.tag = drawTag(kind, p.index);
+  if (material.shading == ShadingModel::PerPixel && lighting.lights.empty()) {
+    // Ambient only: shadePoint returns the ambient term for every fragment, so the rasterizer is
+    // told it is a constant (same bits, no interpolation).
+    const ConstantColorShader shader(glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0));
+    call.vertices = p.vertices;
+    call.shader = &shader;
+    renderer.draw(call);
+    return;
+  }
   if (material.shading == ShadingModel::PerPixel) {
     const PerPixelLightingShader shader(lighting);
     call.vertices = p.vertices;

@@ -22,32 +22,36 @@ namespace {
 // The camera pass's shader: 002's GL_MODULATE of the lit colour by the compare result, per light:
 // colour = sum over lights of (ambient / n + diffuse_i + specular_i) * factor_i. With one light,
 // as in the documents, that is (ambient + light) * (1 or the compare-fail value).
-class ShadowMappedShader final : public PerPixelLightingShader {
+class ShadowMappedShader final : public FragmentShader {
  public:
   ShadowMappedShader(const LightingSetup& setup, const std::vector<const LightShadow*>& shadows)
-      : PerPixelLightingShader(setup), shadows_(shadows) {}
+      : ambient_(ambientTerm(setup.material, setup.globalAmbient)), eye_(setup.eye), shadows_(shadows) {
+    for (const PhongLight& light : setup.lights) {
+      inRange_.push_back(light.position != glm::dvec4(0.0));
+      terms_.push_back(lightTerms(light, setup.material));
+    }
+  }
+
+  int varyingCount() const override { return 6; }
 
   glm::dvec4 shade(const FragmentInput& in) const override {
     const double* v = in.varyings;
     const glm::dvec3 p(v[kVaryingPosition], v[kVaryingPosition + 1], v[kVaryingPosition + 2]);
-    glm::dvec3 n(v[kVaryingNormal], v[kVaryingNormal + 1], v[kVaryingNormal + 2]);
-    const double len = glm::length(n);
-    if (len > 0.0) n /= len;
-    if (in.facing == BackFacing) n = -n;
-    const glm::dvec3 ambient = ambientTerm(setup_.material, setup_.globalAmbient);
-    if (shadows_.empty()) return glm::dvec4(ambient, 1.0);
+    const glm::dvec3 n = fragmentNormal(in);
+    if (shadows_.empty()) return glm::dvec4(ambient_, 1.0);
     glm::dvec3 c(0.0);
     const double share = 1.0 / double(shadows_.size());
     for (size_t i = 0; i < shadows_.size(); ++i) {
-      const glm::dvec3 light = setup_.lights[i].position == glm::dvec4(0.0)
-                                   ? glm::dvec3(0.0)
-                                   : lightContribution(setup_.lights[i], setup_.material, p, n, setup_.eye);
-      c += (ambient * share + light) * shadows_[i]->factor(p);
+      const glm::dvec3 light = inRange_[i] ? lightContribution(terms_[i], p, n, eye_) : glm::dvec3(0.0);
+      c += (ambient_ * share + light) * shadows_[i]->factor(p);
     }
     return glm::dvec4(c, 1.0);
   }
 
  private:
+  glm::dvec3 ambient_, eye_;
+  std::vector<LightTerms> terms_;
+  std::vector<bool> inRange_;  // a light out of range is given as PhongLight{0}: no contribution
   const std::vector<const LightShadow*>& shadows_;
 };
 

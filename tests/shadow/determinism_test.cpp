@@ -2,12 +2,12 @@
 // for any thread count.
 #include <catch2/catch.hpp>
 
-#include <cstring>
-
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
+#include "support/frame_compare.h"
 
 using namespace shadowref;
+using shadowref::testing::requireIdenticalFrames;
 
 namespace {
 
@@ -28,28 +28,6 @@ FrameResult render(const Scene& scene, int threads) {
   return renderFrame(scene, options);
 }
 
-bool sameBytes(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
-  if (a.size() != b.size()) return false;
-  return a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0;
-}
-
-// Compares every buffer byte for byte (floats by their bits, not their values).
-void requireIdentical(const FrameResult& a, const FrameResult& b) {
-  const Framebuffer& fa = a.framebuffer;
-  const Framebuffer& fb = b.framebuffer;
-  REQUIRE(fa.hasColor() == fb.hasColor());
-  REQUIRE(fa.hasDepth() == fb.hasDepth());
-  REQUIRE(fa.hasStencil() == fb.hasStencil());
-  REQUIRE(fa.hasAccum() == fb.hasAccum());
-  CHECK(sameBytes(fa.color(), fb.color()));
-  CHECK(fa.depthCodes() == fb.depthCodes());
-  CHECK(fa.stencil() == fb.stencil());
-  CHECK(sameBytes(fa.accum(), fb.accum()));
-  CHECK(a.stencilPerLight == b.stencilPerLight);
-  CHECK(a.stats.fragments == b.stats.fragments);
-  CHECK(a.stats.stencilWrites == b.stats.stencilWrites);
-}
-
 }  // namespace
 
 TEST_CASE("every buffer is byte-identical for 1, 2 and 8 threads and on a second run", "[determinism]") {
@@ -60,7 +38,7 @@ TEST_CASE("every buffer is byte-identical for 1, 2 and 8 threads and on a second
   const Scene scene = smallScene(generator, method);
   const FrameResult one = render(scene, 1);
   REQUIRE(one.framebuffer.hasColor());
-  requireIdentical(one, render(scene, 1));
-  requireIdentical(one, render(scene, 2));
-  requireIdentical(one, render(scene, 8));
+  requireIdenticalFrames(one, render(scene, 1));
+  requireIdenticalFrames(one, render(scene, 2));
+  requireIdenticalFrames(one, render(scene, 8));
 }

@@ -1,0 +1,130 @@
+// The span loops (stencil counting, depth only, general) against the reference path, which sends
+// every fragment through the one-fragment function of the pixel history: the same triangles in
+// random render states must leave the same bytes in every buffer and the same counters.
+#include <cstring>
+
+#include <catch2/catch.hpp>
+
+#include "raster/renderer.h"
+#include "support/raster_harness.h"
+
+using namespace shadowref;
+using namespace shadowref::testing;
+
+namespace {
+
+struct Drawn {
+  Framebuffer fb;
+  RasterStats stats;
+};
+
+StencilOp randomOp(TestRandom& r, bool wrapOnly) {
+  static const StencilOp wrap[] = {StencilOp::Keep, StencilOp::IncrWrap, StencilOp::DecrWrap};
+  if (wrapOnly) return wrap[r.below(3)];
+  return StencilOp(r.below(8));
+}
+
+// A state of one of the three shapes the span loops distinguish, or anything at all.
+RenderState randomState(TestRandom& r, const Framebuffer& fb, int shape) {
+  RenderState s = fullViewportState(fb);
+  s.depthTest = r.below(5) != 0;
+  s.depthFunc = CompareFunc(r.below(8));
+  s.depthWrite = r.below(2) == 0;
+  s.depthClamp = r.below(4) == 0;
+  s.viewport.nearVal = r.below(3) == 0 ? 0.25 : 0.0;
+  s.viewport.farVal = r.below(3) == 0 ? 0.75 : 1.0;
+  s.cull = CullMode(r.below(3));
+  s.polygonOffset = {r.below(3) == 0, r.uniform(-2.0, 2.0), double(r.below(5)) - 2.0};
+  s.stencilTest = r.below(3) != 0;
+  for (StencilFaceState& f : s.stencil) {
+    f.func = CompareFunc(r.below(8));
+    f.ref = r.below(300) - 20;
+    f.mask = r.below(2) ? 0xFF : uint8_t(r.below(256));
+    f.writeMask = r.below(2) ? 0xFF : uint8_t(r.below(256));
+    f.sfail = randomOp(r, false);
+    f.dpfail = randomOp(r, false);
+    f.dppass = randomOp(r, false);
+  }
+  s.blend = {r.below(2) == 0, BlendFactor(r.below(10)), BlendFactor(r.below(10))};
+  for (bool& m : s.colorMask) m = r.below(4) != 0;
+  if (shape == 0) {  // a shadow-volume pass
+    s.stencilTest = true;
+    s.depthWrite = false;
+    s.colorMask = {false, false, false, false};
+    for (StencilFaceState& f : s.stencil) {
+      f.func = CompareFunc::Always;
+      f.writeMask = 0xFF;
+      f.dpfail = randomOp(r, true);
+      f.dppass = randomOp(r, true);
+    }
+  } else if (shape == 1) {  // a depth-map pass
+    s.stencilTest = false;
+    s.colorMask = {false, false, false, false};
+  }
+  return s;
+}
+
+std::vector<ClipVertex> randomTriangles(TestRandom& r, const Viewport& vp, int count) {
+  std::vector<ClipVertex> out;
+  for (int i = 0; i < count; ++i) {
+    const double cx = r.uniform(-10.0, 74.0), cy = r.uniform(-10.0, 74.0), size = r.uniform(1.0, 60.0);
+    for (int k = 0; k < 3; ++k) {
+      ClipVertex v = windowVertex(vp, cx + r.uniform(-size, size), cy + r.uniform(-size, size), r.uniform(-0.2, 1.2));
+      const double w = r.uniform(0.5, 3.0);  // perspective: varyings and depth vary non-linearly
+      v.position *= w;
+      for (int c = 0; c < 4; ++c) v.varyings[size_t(c)] = r.uniform(-0.2, 1.2);
+      out.push_back(v);
+    }
+  }
+  return out;
+}
+
+Drawn drawWith(bool reference, DepthFormat format, const std::vector<RenderState>& states,
+               const std::vector<std::vector<ClipVertex>>& batches, int threads) {
+  Renderer::useReferencePath(reference);
+  Drawn d{Framebuffer(64, 64, format), {}};
+  Renderer renderer(d.fb, threads);
+  Renderer::useReferencePath(false);
+  const ColorVaryingShader varying;
+  const ConstantColorShader constant({0.3, 0.6, 0.9, 0.5});
+  for (size_t i = 0; i < states.size(); ++i) {
+    const FragmentShader* shader = i % 3 == 0 ? nullptr : i % 3 == 1 ? static_cast<const FragmentShader*>(&varying) : &constant;
+    draw(renderer, states[i], batches[i], shader);
+  }
+  d.stats = renderer.stats();
+  return d;
+}
+
+bool sameColor(const Framebuffer& a, const Framebuffer& b) {
+  return a.color().size() == b.color().size() &&
+         (a.color().empty() || std::memcmp(a.color().data(), b.color().data(), a.color().size() * sizeof(glm::vec4)) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("span loops leave the same bytes as the one-fragment path, in random states", "[raster][spans]") {
+  const int shape = GENERATE(0, 1, 2);
+  const DepthFormat format = GENERATE(DepthFormat::Float32, DepthFormat::Unorm24);
+  for (uint64_t seed = 1; seed <= 12; ++seed) {
+    INFO("shape " << shape << ", seed " << seed);
+    TestRandom r(seed * 7919 + uint64_t(shape));
+    Framebuffer probe(64, 64, format);
+    std::vector<RenderState> states;
+    std::vector<std::vector<ClipVertex>> batches;
+    for (int draw = 0; draw < 12; ++draw) {
+      states.push_back(randomState(r, probe, draw == 0 ? 2 : shape));
+      batches.push_back(randomTriangles(r, states.back().viewport, 6));
+    }
+    const Drawn reference = drawWith(true, format, states, batches, 1);
+    const Drawn spans = drawWith(false, format, states, batches, 1);
+    REQUIRE(reference.stats.fragments > 0);
+    CHECK(reference.fb.stencil() == spans.fb.stencil());
+    CHECK(reference.fb.depthCodes() == spans.fb.depthCodes());
+    CHECK(sameColor(reference.fb, spans.fb));
+    CHECK(reference.stats.fragments == spans.stats.fragments);
+    CHECK(reference.stats.stencilFailed == spans.stats.stencilFailed);
+    CHECK(reference.stats.depthFailed == spans.stats.depthFailed);
+    CHECK(reference.stats.stencilWrites == spans.stats.stencilWrites);
+    CHECK(reference.stats.colorWrites == spans.stats.colorWrites);
+  }
+}
