@@ -8,6 +8,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 
 #include "raster/render_state.h"
 #include "raster/triangle_setup.h"
@@ -58,38 +59,76 @@ void rasterizeTriangle(const TriangleSetup& t, const Rect& region, Sink&& sink) 
   }
 }
 
+// Floor division for a positive divisor.
+inline int64_t floorDiv(int64_t a, int64_t d) {
+  const int64_t q = a / d;
+  return (a % d != 0 && a < 0) ? q - 1 : q;
+}
+
+// One edge's limit on the covered columns of a row, stepped from row to row without division:
+// the limit is floor(A / d) for a numerator A that changes by a fixed amount per row, so its
+// quotient and remainder advance by a precomputed quotient and remainder (Bresenham's idea). A
+// left edge (stepX > 0) gives the first covered offset ceil(-E / stepX), a right edge
+// (stepX < 0) the last, floor(E / -stepX); E is the biased edge value at the row's first column.
+struct EdgeLimit {
+  int64_t q = 0, r = 0;    // floor(A / d) and A - q * d, 0 <= r < d
+  int64_t dq = 0, dr = 0;  // the same for the change of A per row
+  int64_t d = 1;
+
+  void start(int64_t a, int64_t perRow, int64_t divisor) {
+    d = divisor;
+    q = floorDiv(a, d);
+    r = a - q * d;
+    dq = floorDiv(perRow, d);
+    dr = perRow - dq * d;
+  }
+  void nextRow() {
+    q += dq;
+    r += dr;
+    if (r >= d) {
+      ++q;
+      r -= d;
+    }
+  }
+};
+
 // The same coverage as rasterizeTriangle, delivered as one interval per row: a triangle is
-// convex, so the covered centres of a row are contiguous. The interval comes from the same integer
-// edge functions by exact division (E + bias >= 0 solved for x), so every pixel is covered here
-// exactly when rasterizeTriangle covers it. Sink: void(int y, int xl, int xr, const int64_t e[3])
-// with the unbiased edge values at (xl, y); rows bottom to top.
+// convex, so the covered centres of a row are contiguous. The interval's ends are the exact
+// solutions of E_i + bias_i >= 0 in integers (EdgeLimit), so every pixel is covered here exactly
+// when rasterizeTriangle covers it. Sink: void(int y, int xl, int xr, const int64_t e[3]) with the
+// unbiased edge values at (xl, y); rows bottom to top.
 template <class SpanSink>
 void rasterizeSpans(const TriangleSetup& t, const Rect& region, SpanSink&& sink) {
   const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
   const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
   if (x0 > x1 || y0 > y1) return;
   int64_t row[3];
-  for (int i = 0; i < 3; ++i) row[i] = t.edgeAt(i, x0, y0) + t.bias[i];
+  EdgeLimit left[3], right[3];
+  int lefts = 0, rights = 0;
+  int64_t flat[3];  // horizontal edges (stepX = 0): the row is covered only while E >= 0
+  int flats = 0;
+  for (int i = 0; i < 3; ++i) {
+    row[i] = t.edgeAt(i, x0, y0) + t.bias[i];
+    const int64_t s = t.stepX[i];
+    if (s > 0) left[lefts++].start(-row[i] + s - 1, -t.stepY[i], s);  // ceil(-E / s)
+    else if (s < 0) right[rights++].start(row[i], t.stepY[i], -s);     // floor(E / -s)
+    else flat[flats++] = i;
+  }
+  const int64_t width = x1 - x0;
   for (int y = y0; y <= y1; ++y) {
-    // Offsets from x0 of the first and last covered pixel: lo <= x - x0 <= hi.
-    int64_t lo = 0, hi = x1 - x0;
-    for (int i = 0; i < 3 && lo <= hi; ++i) {
-      const int64_t e = row[i], s = t.stepX[i];
-      if (s > 0) {
-        if (e < 0) lo = std::max(lo, (-e + s - 1) / s);  // ceil(-e / s)
-      } else if (s < 0) {
-        if (e < 0) hi = -1;
-        else hi = std::min(hi, e / -s);                   // floor(e / -s)
-      } else if (e < 0) {
-        hi = -1;
-      }
-    }
+    int64_t lo = 0, hi = width;
+    for (int k = 0; k < lefts; ++k) lo = std::max(lo, left[k].q);
+    for (int k = 0; k < rights; ++k) hi = std::min(hi, right[k].q);
+    for (int k = 0; k < flats; ++k)
+      if (row[flat[k]] < 0) hi = -1;
     if (lo <= hi) {
       int64_t e[3];
       for (int i = 0; i < 3; ++i) e[i] = row[i] + t.stepX[i] * lo - t.bias[i];
       sink(y, x0 + int(lo), x0 + int(hi), e);
     }
     for (int i = 0; i < 3; ++i) row[i] += t.stepY[i];
+    for (int k = 0; k < lefts; ++k) left[k].nextRow();
+    for (int k = 0; k < rights; ++k) right[k].nextRow();
   }
 }
 

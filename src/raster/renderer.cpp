@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <stdexcept>
 
 #include "raster/rasterizer.h"
@@ -70,14 +71,14 @@ Rect drawRegion(const RenderState& state, const Framebuffer& fb) {
 }
 
 void Renderer::addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
-                        const RenderState& state) {
+                        const RenderState& state, AssemblyWorkspace& ws) const {
   TriangleSetup t;
   if (!setupTriangle(a, b, c, facing, state, fb_.depthCodec(), t)) return;
-  setups_.push_back(t);
+  ws.setups.push_back(t);
 }
 
-void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c,
-                                const RenderState& state, const ClipPlanes& planes, int varyingCount) {
+void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, const RenderState& state,
+                                const ClipPlanes& planes, int varyingCount, AssemblyWorkspace& ws) const {
   canonicalRotation(a, b, c);
   const ClipVertex* tri[3] = {a, b, c};
   bool inside = true;
@@ -89,34 +90,56 @@ void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const 
     const int64_t area2 = signedArea2(wa, wb, wc);
     const Facing facing = facingOf(area2, state.frontFace);
     if (area2 == 0 || isCulled(facing, state.cull)) {
-      ++stats_.trianglesCulled;
+      ++ws.stats.trianglesCulled;
       return;
     }
-    addSetup(wa, wb, wc, facing, state);
+    addSetup(wa, wb, wc, facing, state, ws);
     return;
   }
 
-  ++stats_.trianglesClipped;
-  polygon_.assign({*a, *b, *c});
-  clipPolygon(polygon_, planes, varyingCount, clipOut_, clipScratch_);
-  if (clipOut_.size() < 3) return;
-  windowPolygon_.clear();
-  for (const ClipVertex& v : clipOut_) {
-    clippedVertices_.push_back(v);
-    windowPolygon_.push_back(toWindow(clippedVertices_.back(), state.viewport));
+  ++ws.stats.trianglesClipped;
+  ws.polygon.assign({*a, *b, *c});
+  clipPolygon(ws.polygon, planes, varyingCount, ws.clipOut, ws.clipScratch);
+  if (ws.clipOut.size() < 3) return;
+  ws.windowPolygon.clear();
+  for (const ClipVertex& v : ws.clipOut) {
+    ws.clippedVertices.push_back(v);
+    ws.windowPolygon.push_back(toWindow(ws.clippedVertices.back(), state.viewport));
   }
   // Facing of the polygon as a whole (GL 2.1 §2.14.1: the area of the clipped polygon).
   int64_t area2 = 0;
-  for (size_t i = 1; i + 1 < windowPolygon_.size(); ++i)
-    area2 += signedArea2(windowPolygon_[0], windowPolygon_[i], windowPolygon_[i + 1]);
+  for (size_t i = 1; i + 1 < ws.windowPolygon.size(); ++i)
+    area2 += signedArea2(ws.windowPolygon[0], ws.windowPolygon[i], ws.windowPolygon[i + 1]);
   const Facing facing = facingOf(area2, state.frontFace);
   if (area2 == 0 || isCulled(facing, state.cull)) {
-    ++stats_.trianglesCulled;
+    ++ws.stats.trianglesCulled;
     return;
   }
-  for (size_t i = 1; i + 1 < windowPolygon_.size(); ++i)
-    addSetup(windowPolygon_[0], windowPolygon_[i], windowPolygon_[i + 1], facing, state);
+  for (size_t i = 1; i + 1 < ws.windowPolygon.size(); ++i)
+    addSetup(ws.windowPolygon[0], ws.windowPolygon[i], ws.windowPolygon[i + 1], facing, state, ws);
 }
+
+void Renderer::assembleRange(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes,
+                             int varyingCount, AssemblyWorkspace& ws) const {
+  ws.setups.clear();
+  ws.clippedVertices.clear();
+  ws.stats = {};
+  for (size_t i = first; i < last; ++i) {
+    const ClipVertex* v[3];
+    for (int k = 0; k < 3; ++k) {
+      const size_t index = call.indices.empty() ? 3 * i + k : call.indices[3 * i + k];
+      if (index >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
+      v[k] = &call.vertices[index];
+    }
+    assembleTriangle(v[0], v[1], v[2], *call.state, planes, varyingCount, ws);
+  }
+}
+
+namespace {
+// Triangle assembly is split into chunks of this many triangles when there are threads; each
+// chunk's setups are appended in chunk order, so the list is the same as on one thread.
+constexpr size_t kAssemblyChunk = 256;
+}  // namespace
 
 void Renderer::draw(const DrawCall& call) {
   const RenderState& state = *call.state;
@@ -135,18 +158,33 @@ void Renderer::draw(const DrawCall& call) {
   planes.guardBand = guardBandFor(state.viewport);
   const int varyingCount = call.shader ? call.shader->varyingCount() : 0;
 
-  setups_.clear();
-  clippedVertices_.clear();
   const size_t triangleCount = call.indices.empty() ? call.vertices.size() / 3 : call.indices.size() / 3;
   stats_.trianglesIn += triangleCount;
-  for (size_t i = 0; i < triangleCount; ++i) {
-    const ClipVertex* v[3];
-    for (int k = 0; k < 3; ++k) {
-      const size_t index = call.indices.empty() ? 3 * i + k : call.indices[3 * i + k];
-      if (index >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
-      v[k] = &call.vertices[index];
-    }
-    assembleTriangle(v[0], v[1], v[2], state, planes, varyingCount);
+  const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
+  if (assembly_.size() < chunks) assembly_.resize(chunks);
+  if (chunks == 1) {
+    assembleRange(call, 0, triangleCount, planes, varyingCount, assembly_[0]);
+  } else {
+    // An exception (an index out of range) is rethrown here once every chunk has finished.
+    std::vector<std::exception_ptr> errors(chunks);
+    pool_->run(int(chunks), [&](int c) {
+      const size_t first = size_t(c) * kAssemblyChunk;
+      try {
+        assembleRange(call, first, std::min(triangleCount, first + kAssemblyChunk), planes, varyingCount,
+                      assembly_[size_t(c)]);
+      } catch (...) {
+        errors[size_t(c)] = std::current_exception();
+      }
+    });
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
+  }
+  setups_.clear();
+  for (size_t c = 0; c < chunks; ++c) {
+    const AssemblyWorkspace& ws = assembly_[c];
+    setups_.insert(setups_.end(), ws.setups.begin(), ws.setups.end());
+    stats_.trianglesClipped += ws.stats.trianglesClipped;
+    stats_.trianglesCulled += ws.stats.trianglesCulled;
   }
   stats_.trianglesRasterized += setups_.size();
 
@@ -158,7 +196,7 @@ void Renderer::draw(const DrawCall& call) {
 namespace {
 constexpr int kBandRows = 16;
 // Below this many candidate pixels a draw is not worth waking the other threads for.
-constexpr int64_t kParallelThreshold = 8192;
+constexpr int64_t kParallelThreshold = 2048;
 
 int64_t candidatePixels(const std::vector<TriangleSetup>& setups, const Rect& r) {
   int64_t sum = 0;

@@ -60,10 +60,21 @@ class Renderer {
   }
 
  private:
-  void assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c,
-                        const RenderState& state, const ClipPlanes& planes, int varyingCount);
+  // What one thread of triangle assembly works in: its share of the triangles' setups, the
+  // vertices clipping made (kept at stable addresses for WindowVertex::source), scratch, counters.
+  struct AssemblyWorkspace {
+    std::vector<TriangleSetup> setups;
+    std::deque<ClipVertex> clippedVertices;
+    std::vector<ClipVertex> polygon, clipScratch, clipOut;
+    std::vector<WindowVertex> windowPolygon;
+    RasterStats stats;
+  };
+  void assembleRange(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes, int varyingCount,
+                     AssemblyWorkspace& ws) const;
+  void assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, const RenderState& state,
+                        const ClipPlanes& planes, int varyingCount, AssemblyWorkspace& ws) const;
   void addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
-                const RenderState& state);
+                const RenderState& state, AssemblyWorkspace& ws) const;
 
   void rasterizeAll(const DrawCall& call, const Rect& region);
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
@@ -75,11 +86,10 @@ class Renderer {
   PixelWatch watch_;
   uint64_t drawCount_ = 0;
   bool referencePath_;
-  // Per-draw scratch, kept to avoid allocation per call.
+  // Per-draw scratch, kept to avoid allocation per call: one assembly workspace per chunk of
+  // triangles, and the setups of all chunks in submission order.
+  std::vector<AssemblyWorkspace> assembly_;
   std::vector<TriangleSetup> setups_;
-  std::deque<ClipVertex> clippedVertices_;  // stable addresses for WindowVertex::source
-  std::vector<ClipVertex> polygon_, clipScratch_, clipOut_;
-  std::vector<WindowVertex> windowPolygon_;
 };
 
 // The rectangle of pixels a draw may touch: viewport, framebuffer and (if on) scissor.

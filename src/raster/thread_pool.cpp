@@ -1,6 +1,14 @@
 #include "raster/thread_pool.h"
 
+#include <chrono>
+
 namespace shadowref {
+
+namespace {
+// How long an idle worker spins before it sleeps: longer than the gap between two draws of a
+// pass, short enough not to hold a core between frames.
+constexpr std::chrono::microseconds kSpinTime{300};
+}  // namespace
 
 int defaultThreadCount() {
   const unsigned n = std::thread::hardware_concurrency();
@@ -20,25 +28,43 @@ ThreadPool::~ThreadPool() {
   for (std::thread& t : workers_) t.join();
 }
 
-void ThreadPool::drain() {
-  for (int i = next_.fetch_add(1); i < count_; i = next_.fetch_add(1)) (*task_)(i);
+void ThreadPool::drain(uint32_t generation) {
+  uint64_t ticket = ticket_.load(std::memory_order_acquire);
+  for (;;) {
+    // count_ is read after the ticket of its run was seen, so it is that run's count.
+    if (uint32_t(ticket >> 32) != generation || int(ticket & 0xFFFFFFFFu) >= count_.load(std::memory_order_relaxed))
+      return;
+    if (!ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel)) continue;
+    // The claimed task belongs to this run, which cannot end before it is done: task_ is its.
+    (*task_.load(std::memory_order_relaxed))(int(ticket & 0xFFFFFFFFu));
+    done_.fetch_add(1, std::memory_order_release);
+    ticket = ticket_.load(std::memory_order_acquire);
+  }
+}
+
+uint32_t ThreadPool::waitForWork(uint32_t seen) {
+  const auto spinUntil = std::chrono::steady_clock::now() + kSpinTime;
+  for (int spins = 0;; ++spins) {
+    const uint32_t g = generation_.load(std::memory_order_acquire);
+    if (g != seen || stop_.load(std::memory_order_acquire)) return g;
+    if ((spins & 63) == 63 && std::chrono::steady_clock::now() > spinUntil) break;
+    std::this_thread::yield();
+  }
+  // Sleep. sleepers_ is raised before generation_ is read again and run() raises generation_
+  // before it reads sleepers_ (both sequentially consistent), so one of the two sees the other.
+  std::unique_lock lock(mutex_);
+  sleepers_.fetch_add(1);
+  wake_.wait(lock, [&] { return stop_.load() || generation_.load() != seen; });
+  sleepers_.fetch_sub(1);
+  return generation_.load();
 }
 
 void ThreadPool::workerLoop() {
-  uint64_t seen = 0;
+  uint32_t seen = 0;
   for (;;) {
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-      if (stop_) return;
-      seen = generation_;
-      ++busy_;
-    }
-    drain();
-    {
-      std::lock_guard lock(mutex_);
-      if (--busy_ == 0) done_.notify_all();
-    }
+    seen = waitForWork(seen);
+    if (stop_.load(std::memory_order_acquire)) return;
+    drain(seen);
   }
 }
 
@@ -47,18 +73,20 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
     for (int i = 0; i < count; ++i) task(i);
     return;
   }
-  {
+  // A worker late from an earlier run finds the ticket of another run and claims nothing; the
+  // release store of ticket_ publishes task_ and count_ to the workers that claim.
+  task_.store(&task, std::memory_order_relaxed);
+  count_.store(count, std::memory_order_relaxed);
+  done_.store(0, std::memory_order_relaxed);
+  const uint32_t generation = generation_.load(std::memory_order_relaxed) + 1;
+  ticket_.store(uint64_t(generation) << 32, std::memory_order_release);
+  generation_.store(generation);  // sequentially consistent: see waitForWork
+  if (sleepers_.load() > 0) {
     std::lock_guard lock(mutex_);
-    task_ = &task;
-    count_ = count;
-    next_.store(0);
-    ++generation_;
+    wake_.notify_all();
   }
-  wake_.notify_all();
-  drain();
-  std::unique_lock lock(mutex_);
-  done_.wait(lock, [&] { return busy_ == 0 && next_.load() >= count_; });
-  task_ = nullptr;
+  drain(generation);
+  while (done_.load(std::memory_order_acquire) < count) std::this_thread::yield();
 }
 
 }  // namespace shadowref

@@ -1,11 +1,18 @@
 // A small pool of persistent worker threads for the rasterizer. Work is handed out as numbered
-// tasks (bands of rows); which thread runs which task varies, but tasks touch disjoint pixels and
-// each runs its triangles in submission order, so the buffers come out byte-identical for any
-// thread count (the llvmpipe idea of STYLE.md: each tile owned by one thread, replayed in order).
+// tasks (bands of rows, chunks of triangles); which thread runs which task varies, but tasks touch
+// disjoint pixels and each runs its triangles in submission order, so the buffers come out
+// byte-identical for any thread count (the llvmpipe idea of STYLE.md: each tile owned by one
+// thread, replayed in order).
+//
+// A frame is hundreds of draws, each a few hundred microseconds or less, so waking a sleeping
+// thread per draw (tens of microseconds) would eat the gain. Idle workers therefore spin, yielding
+// the core, for a while before they sleep on the condition variable: a draw that follows soon
+// starts on every thread within a microsecond or so.
 #pragma once
 
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -24,22 +31,28 @@ class ThreadPool {
   int threadCount() const { return int(workers_.size()) + 1; }
 
   // Runs task(i) for i in [0, count), on the workers and the calling thread; returns when all
-  // are done.
+  // are done. Not reentrant: one run at a time, from one thread.
   void run(int count, const std::function<void(int)>& task);
 
  private:
   void workerLoop();
-  void drain();
+  // Claims and runs tasks of run number `generation` until none is left.
+  void drain(uint32_t generation);
+  uint32_t waitForWork(uint32_t seen);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
-  std::condition_variable wake_, done_;
-  const std::function<void(int)>* task_ = nullptr;
-  int count_ = 0;
-  std::atomic<int> next_{0};
-  int busy_ = 0;
-  uint64_t generation_ = 0;
-  bool stop_ = false;
+  std::condition_variable wake_;
+  std::atomic<int> sleepers_{0};
+  std::atomic<bool> stop_{false};
+  // The current run: its number, and the next task to claim in the low 32 bits of `ticket_`
+  // (number in the high bits), so a worker late from an earlier run can never claim a task of
+  // this one.
+  std::atomic<uint32_t> generation_{0};
+  std::atomic<uint64_t> ticket_{0};
+  std::atomic<int> done_{0};
+  std::atomic<const std::function<void(int)>*> task_{nullptr};
+  std::atomic<int> count_{0};
 };
 
 // The number of threads "0 = all cores" means.
