@@ -29,6 +29,7 @@
 #include "conformance/osmesa_harness.h"
 #include "image/image_writer.h"
 #include "mesa_frame.h"
+#include "raster/allocator_tuning.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 
@@ -96,6 +97,9 @@ double cpuMilliseconds() {
 }
 
 int runWorker(const std::string& engine, int threads, int frames, const SceneCase& c) {
+  // Mesa keeps its buffers from frame to frame; shadowref allocates them per frame and keeps the
+  // freed memory (allocator_tuning.h). Set for both engines, so both run in the same process state.
+  keepFreedMemoryForReuse();
   const Scene scene = loadCase(c);
   std::vector<double> wallMs, cpuMs;
   auto timed = [&](auto&& frame) {

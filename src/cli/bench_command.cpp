@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 
+#include "raster/allocator_tuning.h"
 #include "raster/thread_pool.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/shadow_method.h"
@@ -32,6 +33,7 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
 }
 
 int runBench(const BenchArgs& args) {
+  keepFreedMemoryForReuse();
   const std::optional<Scene> scene = loadSceneOrReport(args.scene);
   if (!scene) return kBadInput;
   FrameOptions options;

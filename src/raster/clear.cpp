@@ -19,11 +19,16 @@ Rect clearRegion(const Framebuffer& fb, const RenderState& state) {
 
 namespace {
 
+// Runs fn(first, count) for each row of the cleared region: the pixels [first, first + count).
 template <class Fn>
-void forEachClearedPixel(const Framebuffer& fb, const RenderState& state, Fn&& fn) {
+void forEachClearedRow(const Framebuffer& fb, const RenderState& state, Fn&& fn) {
   const Rect r = clearRegion(fb, state);
-  for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x) fn(fb.index(x, y));
+  if (r.width == 0) return;
+  if (r.x == 0 && r.width == fb.width()) {  // whole rows: one run
+    fn(fb.index(0, r.y), size_t(r.width) * size_t(r.height));
+    return;
+  }
+  for (int y = r.y; y < r.y + r.height; ++y) fn(fb.index(r.x, y), size_t(r.width));
 }
 
 }  // namespace
@@ -31,27 +36,43 @@ void forEachClearedPixel(const Framebuffer& fb, const RenderState& state, Fn&& f
 void clearColor(Framebuffer& fb, const RenderState& state, const glm::vec4& value) {
   fb.ensureColor();
   const glm::dvec4 v(glm::clamp(value, 0.0f, 1.0f));
-  forEachClearedPixel(fb, state, [&](size_t i) { fb.color()[i] = writeColor(fb.color()[i], v, state.colorMask); });
+  glm::vec4* color = fb.color().data();
+  const auto& mask = state.colorMask;
+  if (mask[0] && mask[1] && mask[2] && mask[3]) {
+    const glm::vec4 written = writeColor(glm::vec4(0.0f), v, mask);  // no stored channel survives
+    forEachClearedRow(fb, state, [&](size_t first, size_t count) { std::fill_n(color + first, count, written); });
+    return;
+  }
+  forEachClearedRow(fb, state, [&](size_t first, size_t count) {
+    for (size_t i = first; i < first + count; ++i) color[i] = writeColor(color[i], v, mask);
+  });
 }
 
 void clearDepth(Framebuffer& fb, const RenderState& state, double value) {
   fb.ensureDepth();
   if (!state.depthWrite) return;
   const uint32_t code = fb.depthCodec().encode(value);
-  forEachClearedPixel(fb, state, [&](size_t i) { fb.depthCodes()[i] = code; });
+  uint32_t* depth = fb.depthCodes().data();
+  forEachClearedRow(fb, state, [&](size_t first, size_t count) { std::fill_n(depth + first, count, code); });
 }
 
 void clearStencil(Framebuffer& fb, const RenderState& state, int value) {
   fb.ensureStencil();
   const uint8_t v = uint8_t(value & 0xFF);  // GL masks the clear value to the buffer's bits
   const uint8_t mask = state.stencil[FrontFacing].writeMask;
-  forEachClearedPixel(fb, state, [&](size_t i) { fb.stencil()[i] = writeStencil(fb.stencil()[i], v, mask); });
+  uint8_t* stencil = fb.stencil().data();
+  forEachClearedRow(fb, state, [&](size_t first, size_t count) {
+    if (mask == 0xFF) std::fill_n(stencil + first, count, v);
+    else
+      for (size_t i = first; i < first + count; ++i) stencil[i] = writeStencil(stencil[i], v, mask);
+  });
 }
 
 void clearAccum(Framebuffer& fb, const RenderState& state, const glm::vec4& value) {
   fb.ensureAccum();
   const glm::vec4 v = glm::clamp(value, -1.0f, 1.0f);
-  forEachClearedPixel(fb, state, [&](size_t i) { fb.accum()[i] = v; });
+  glm::vec4* accum = fb.accum().data();
+  forEachClearedRow(fb, state, [&](size_t first, size_t count) { std::fill_n(accum + first, count, v); });
 }
 
 }  // namespace shadowref

@@ -253,31 +253,40 @@ void FragmentProcessor::stencilCountChunk(const TriangleSetup& t, size_t at, int
     for (int i = 0; i < n; ++i) stencil[i] = uint8_t(stencil[i] + onPass);
   } else {
     const uint32_t* depth = fb_.depthCodes().data() + at;
-    withCompare(state_.depthFunc, [&](auto f) {
+    withCompare(state_.depthFunc, [&failed, n, depth, codes, stencil, onPass, onFail](auto f) {
+      int fails = 0;
       for (int i = 0; i < n; ++i) {
         const bool pass = passes<decltype(f)::value>(codes[i], depth[i]);
-        failed += !pass;
+        fails += !pass;
         stencil[i] = uint8_t(stencil[i] + (pass ? onPass : onFail));
       }
+      failed = fails;
     });
   }
   stats_.depthFailed += uint64_t(failed);
   stats_.stencilWrites += uint64_t(onPass != 0 ? n - failed : 0) + uint64_t(onFail != 0 ? failed : 0);
 }
 
-// Depth (and nothing else): the shadow maps' pass.
+// Depth (and nothing else): the shadow maps' pass. The store is unconditional (the old value
+// where the test fails), which lets the compiler vectorise the loop; the pixels are this thread's.
 void FragmentProcessor::depthOnlyChunk(size_t at, int n, const uint32_t* codes) {
   if (!usesDepth_) return;
   uint32_t* depth = fb_.depthCodes().data() + at;
   int failed = 0;
-  withCompare(state_.depthFunc, [&](auto f) {
-    for (int i = 0; i < n; ++i) {
-      if (passes<decltype(f)::value>(codes[i], depth[i])) {
-        if (writesDepth_) depth[i] = codes[i];
-      } else {
-        ++failed;
+  // Everything the loops read is captured by value: a store through `depth` could otherwise
+  // change n for all the compiler knows, and the loop would not be vectorised.
+  withCompare(state_.depthFunc, [&failed, n, depth, codes, write = writesDepth_](auto f) {
+    int fails = 0;
+    if (write) {
+      for (int i = 0; i < n; ++i) {
+        const bool pass = passes<decltype(f)::value>(codes[i], depth[i]);
+        fails += !pass;
+        depth[i] = pass ? codes[i] : depth[i];
       }
+    } else {
+      for (int i = 0; i < n; ++i) fails += !passes<decltype(f)::value>(codes[i], depth[i]);
     }
+    failed = fails;
   });
   stats_.depthFailed += uint64_t(failed);
 }
@@ -296,22 +305,36 @@ void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n
     writeColors(color, survivors, survived, nullptr);
     return;
   }
-  // Varyings at each survivor, then one call to the shader for all of them.
-  FragmentInput inputs[kChunk];
-  double varyings[kChunk][kMaxVaryings];
-  glm::dvec4 shaded[kChunk];
+  // Varyings at each survivor, column by column, then one call to the shader for all of them.
+  // Per survivor the arithmetic is interpolateVaryings': the same bits.
+  int xs[kChunk];
+  double depths[kChunk], b0[kChunk], b1[kChunk], b2[kChunk], inv[kChunk];
+  double varyings[kMaxVaryings][kChunk];
   for (int k = 0; k < survived; ++k) {
     const int i = survivors[k];
     const int64_t dx = x + i - xl;
-    interpolateVaryings(t, e[0] + t.stepX[0] * dx, e[1] + t.stepX[1] * dx, e[2] + t.stepX[2] * dx, varyings[k]);
-    FragmentInput& in = inputs[k];
-    in.x = x + i;
-    in.y = y;
-    in.depth = fb_.depthCodec().decode(codes[i]);
-    in.facing = t.facing;
-    in.varyings = varyings[k];
+    xs[k] = x + i;
+    depths[k] = fb_.depthCodec().decode(codes[i]);
+    b0[k] = double(e[0] + t.stepX[0] * dx) * t.v[0].invW;
+    b1[k] = double(e[1] + t.stepX[1] * dx) * t.v[1].invW;
+    b2[k] = double(e[2] + t.stepX[2] * dx) * t.v[2].invW;
   }
-  shader_->shadeBatch(inputs, survived, shaded);
+  for (int k = 0; k < survived; ++k) inv[k] = 1.0 / (b0[k] + b1[k] + b2[k]);
+  FragmentBatch batch;
+  batch.count = survived;
+  batch.y = y;
+  batch.facing = t.facing;
+  batch.x = xs;
+  batch.depth = depths;
+  for (int j = 0; j < varyingCount_; ++j) {
+    const double a0 = t.v[0].source->varyings[size_t(j)], a1 = t.v[1].source->varyings[size_t(j)],
+                 a2 = t.v[2].source->varyings[size_t(j)];
+    double* out = varyings[j];
+    for (int k = 0; k < survived; ++k) out[k] = (b0[k] * a0 + b1[k] * a1 + b2[k] * a2) * inv[k];
+    batch.varyings[j] = out;
+  }
+  glm::dvec4 shaded[kChunk];
+  shader_->shadeBatch(batch, shaded);
   writeColors(color, survivors, survived, shaded);
 }
 

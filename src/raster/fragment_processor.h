@@ -46,6 +46,7 @@ class FragmentProcessor {
  private:
   enum class SpanLoop : uint8_t { StencilCount, DepthOnly, General };
   static constexpr int kChunk = 64;
+  static_assert(kChunk <= kMaxBatch, "a chunk's survivors are shaded as one batch");
 
   SpanLoop chooseSpanLoop() const;
   void runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);

@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include "raster/render_state.h"
+#include "raster/vertex.h"
 
 namespace shadowref {
 
@@ -13,6 +14,18 @@ struct FragmentInput {
   double depth = 0.0;        // window depth after offset and clamping
   Facing facing = FrontFacing;
   const double* varyings = nullptr;  // perspective-correct, varyingCount() of them
+};
+
+// Fragments of one row span of one triangle, shaded together: column by column (structure of
+// arrays), so a shader can run its arithmetic over all of them in vector registers.
+inline constexpr int kMaxBatch = 64;
+struct FragmentBatch {
+  int count = 0;
+  int y = 0;
+  Facing facing = FrontFacing;
+  const int* x = nullptr;           // x[k]: the column of fragment k
+  const double* depth = nullptr;    // depth[k]
+  const double* varyings[kMaxVaryings]{};  // varyings[j][k]: varying j of fragment k
 };
 
 class FragmentShader {
@@ -24,10 +37,9 @@ class FragmentShader {
   // The colour every fragment gets when it does not depend on the fragment, else nullptr: the
   // rasterizer then skips interpolation and the call per fragment.
   virtual const glm::dvec4* constantColor() const { return nullptr; }
-  // shade() for `count` fragments; a shader overrides it to save the call per fragment.
-  virtual void shadeBatch(const FragmentInput* in, int count, glm::dvec4* out) const {
-    for (int i = 0; i < count; ++i) out[i] = shade(in[i]);
-  }
+  // shade() for every fragment of the batch; a shader overrides it to work on all at once. It
+  // must give the bits shade() gives.
+  virtual void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const;
 };
 
 // Outputs the first four varyings as RGBA: flat or Gouraud colour, and the conformance tests.

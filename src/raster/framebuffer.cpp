@@ -12,11 +12,6 @@ constexpr double kUnorm24Max = 16777215.0;  // 2^24 - 1
 }
 
 
-double DepthCodec::decode(uint32_t code) const {
-  if (format == DepthFormat::Unorm24) return double(code) / kUnorm24Max;
-  return double(std::bit_cast<float>(code));
-}
-
 double DepthCodec::resolvableDifference(double zMax) const {
   if (format == DepthFormat::Unorm24) return 1.0 / kUnorm24Max;
   // Float depth: one unit in the last place of the largest depth of the primitive

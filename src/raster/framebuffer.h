@@ -32,7 +32,10 @@ struct DepthCodec {
     if (format == DepthFormat::Unorm24) return uint32_t(std::nearbyint(z * 16777215.0));
     return std::bit_cast<uint32_t>(float(z));
   }
-  double decode(uint32_t code) const;
+  double decode(uint32_t code) const {
+    if (format == DepthFormat::Unorm24) return double(code) / 16777215.0;
+    return double(std::bit_cast<float>(code));
+  }
   // The minimum resolvable difference r of the polygon offset formula at depth z (GL 1.1 §3.5.5).
   double resolvableDifference(double zMax) const;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace shadowref {
 
@@ -100,8 +101,134 @@ glm::dvec3 PerPixelLightingShader::litColor(const FragmentInput& in) const {
 
 glm::dvec4 PerPixelLightingShader::shade(const FragmentInput& in) const { return glm::dvec4(litColor(in), 1.0); }
 
-void PerPixelLightingShader::shadeBatch(const FragmentInput* in, int count, glm::dvec4* out) const {
-  for (int i = 0; i < count; ++i) out[i] = glm::dvec4(litColor(in[i]), 1.0);
+namespace {
+
+// Four fragments' worth of one quantity. GCC's vector types: +, -, *, / and comparisons act on
+// all four lanes with IEEE semantics, so a lane holds the bits the scalar code computes.
+// The helpers below take and return vectors; they are inline and internal, so the ABI note GCC
+// gives for 32-byte vectors without AVX concerns no call that crosses a boundary.
+#pragma GCC diagnostic ignored "-Wpsabi"
+using v4d = double __attribute__((vector_size(32)));
+using v4l = int64_t __attribute__((vector_size(32)));  // comparison results: -1 true, 0 false
+
+inline v4d splat(double x) { return v4d{} + x; }
+inline v4d vsqrt(v4d x) {
+  v4d r;
+  for (int i = 0; i < 4; ++i) r[i] = std::sqrt(x[i]);
+  return r;
+}
+inline v4d select(v4l mask, v4d a, v4d b) { return mask ? a : b; }
+inline v4d vmax0(v4d x) { return x < 0.0 ? splat(0.0) : x; }  // std::max(x, 0.0)
+// glm's dot of two dvec3: (a.x * b.x + a.y * b.y) + a.z * b.z.
+inline v4d dot3(v4d ax, v4d ay, v4d az, v4d bx, v4d by, v4d bz) { return ax * bx + ay * by + az * bz; }
+
+// The batch form of litColor, four fragments per step: lightContribution's operations in the
+// same order, with both sides of every early return computed and the result selected (a lane the
+// scalar code would have left early adds +0.0, as its zero vector does). pow stays a scalar call
+// per fragment that needs it.
+struct LightingColumns {
+  static constexpr int kBlocks = (kMaxBatch + 3) / 4;
+  int count = 0, blocks = 0;
+  v4d px[kBlocks], py[kBlocks], pz[kBlocks], nx[kBlocks], ny[kBlocks], nz[kBlocks];
+  v4d cr[kBlocks], cg[kBlocks], cb[kBlocks];
+
+  void load(const FragmentBatch& b, const glm::dvec3& base) {
+    count = b.count;
+    blocks = (count + 3) / 4;
+    const bool back = b.facing == BackFacing;
+    for (int q = 0; q < blocks; ++q) {
+      v4d p[3], n[3];
+      for (int lane = 0; lane < 4; ++lane) {
+        const int k = std::min(4 * q + lane, count - 1);  // the last block is padded with a copy
+        for (int j = 0; j < 3; ++j) {
+          p[j][lane] = b.varyings[kVaryingPosition + j][k];
+          n[j][lane] = b.varyings[kVaryingNormal + j][k];
+        }
+      }
+      const v4d len = vsqrt(dot3(n[0], n[1], n[2], n[0], n[1], n[2]));
+      const v4l scale = len > 0.0;
+      for (int j = 0; j < 3; ++j) {
+        const v4d unit = select(scale, n[j] / len, n[j]);
+        n[j] = back ? -unit : unit;
+      }
+      px[q] = p[0];
+      py[q] = p[1];
+      pz[q] = p[2];
+      nx[q] = n[0];
+      ny[q] = n[1];
+      nz[q] = n[2];
+      cr[q] = splat(base.x);
+      cg[q] = splat(base.y);
+      cb[q] = splat(base.z);
+    }
+  }
+
+  void add(const LightTerms& L, const glm::dvec3& eye) {
+    for (int q = 0; q < blocks; ++q) addBlock(L, eye, q);
+  }
+
+  void addBlock(const LightTerms& L, const glm::dvec3& eye, int q) {
+    v4d lx, ly, lz, att = splat(1.0);
+    v4l lit = v4l{} - 1;
+    if (L.directional) {
+      lx = splat(L.direction.x);
+      ly = splat(L.direction.y);
+      lz = splat(L.direction.z);
+    } else {
+      const v4d tx = L.point.x - px[q], ty = L.point.y - py[q], tz = L.point.z - pz[q];
+      const v4d d = vsqrt(dot3(tx, ty, tz, tx, ty, tz));
+      lit = d != 0.0;
+      lx = tx / d;
+      ly = ty / d;
+      lz = tz / d;
+      att = 1.0 / (L.attenuation.x + L.attenuation.y * d + L.attenuation.z * d * d);
+      if (L.spot) {
+        const v4d cosAngle = dot3(-lx, -ly, -lz, splat(L.spotAxis.x), splat(L.spotAxis.y), splat(L.spotAxis.z));
+        lit &= ~(cosAngle < L.spotCosCutoff);
+        const v4d base = vmax0(cosAngle);
+        for (int lane = 0; lane < 4; ++lane)
+          if (lit[lane]) att[lane] *= std::pow(base[lane], L.spotExponent);
+      }
+    }
+    const v4d nDotL = dot3(nx[q], ny[q], nz[q], lx, ly, lz);
+    lit &= ~(nDotL <= 0.0);
+    v4d r = L.diffuse.x * nDotL, g = L.diffuse.y * nDotL, b = L.diffuse.z * nDotL;
+    if (L.specular) {
+      const v4d ex = eye.x - px[q], ey = eye.y - py[q], ez = eye.z - pz[q];
+      const v4d ie = 1.0 / vsqrt(dot3(ex, ey, ez, ex, ey, ez));
+      const v4d vx = ex * ie, vy = ey * ie, vz = ez * ie;
+      v4d s;
+      if (L.blinn) {
+        const v4d hx = lx + vx, hy = ly + vy, hz = lz + vz;
+        const v4d ih = 1.0 / vsqrt(dot3(hx, hy, hz, hx, hy, hz));
+        s = vmax0(dot3(nx[q], ny[q], nz[q], hx * ih, hy * ih, hz * ih));
+      } else {
+        const v4d twice = 2.0 * nDotL;
+        s = vmax0(dot3(twice * nx[q] - lx, twice * ny[q] - ly, twice * nz[q] - lz, vx, vy, vz));
+      }
+      v4d spec = splat(1.0);
+      if (L.shininess != 0.0)
+        for (int lane = 0; lane < 4; ++lane)
+          if (lit[lane]) spec[lane] = std::pow(s[lane], L.shininess);
+      r += L.specularColor.x * spec;
+      g += L.specularColor.y * spec;
+      b += L.specularColor.z * spec;
+    }
+    cr[q] += select(lit, att * r, splat(0.0));
+    cg[q] += select(lit, att * g, splat(0.0));
+    cb[q] += select(lit, att * b, splat(0.0));
+  }
+};
+
+}  // namespace
+
+void PerPixelLightingShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const {
+  if (batch.count == 0) return;
+  LightingColumns c;
+  c.load(batch, base_);
+  for (const LightTerms& light : terms_) c.add(light, eye_);
+  for (int k = 0; k < batch.count; ++k)
+    out[k] = glm::dvec4(c.cr[k / 4][k % 4], c.cg[k / 4][k % 4], c.cb[k / 4][k % 4], 1.0);
 }
 
 glm::dvec3 gouraudVertexColor(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n) {

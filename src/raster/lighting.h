@@ -82,7 +82,7 @@ class PerPixelLightingShader final : public FragmentShader {
   explicit PerPixelLightingShader(const LightingSetup& setup);
   int varyingCount() const override { return 6; }
   glm::dvec4 shade(const FragmentInput& in) const override;
-  void shadeBatch(const FragmentInput* in, int count, glm::dvec4* out) const override;
+  void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override;
 
  private:
   glm::dvec3 litColor(const FragmentInput& in) const;

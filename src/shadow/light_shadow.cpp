@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "raster/clear.h"
 #include "raster/renderer.h"
@@ -171,7 +172,12 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   DepthTexture tex;
   tex.width = tex.height = size;
   tex.depth.resize(fb.depthCodes().size());
-  for (size_t i = 0; i < tex.depth.size(); ++i) tex.depth[i] = float(fb.depthCodec().decode(fb.depthCodes()[i]));
+  if (fb.depthCodec().format == DepthFormat::Float32) {
+    // The codes are the floats' bits: decode then float() gives them back unchanged.
+    std::memcpy(tex.depth.data(), fb.depthCodes().data(), tex.depth.size() * sizeof(float));
+  } else {
+    for (size_t i = 0; i < tex.depth.size(); ++i) tex.depth[i] = float(fb.depthCodec().decode(fb.depthCodes()[i]));
+  }
   return tex;
 }
 
