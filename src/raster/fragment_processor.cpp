@@ -23,6 +23,7 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   depthLo_ = std::min(state.viewport.nearVal, state.viewport.farVal);
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
   spanLoop_ = chooseSpanLoop();
+  float32Rows_ = fb.depthCodec().format == DepthFormat::Float32 && !state.depthClamp && usesDepth_;
   if (writesColor_) constantColor_ = shader->constantColor();
 }
 
@@ -196,8 +197,12 @@ void FragmentProcessor::processSpan(const TriangleSetup& t, int y, int xl, int x
 }
 
 void FragmentProcessor::runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]) {
-  uint32_t codes[kChunk];
   stats_.fragments += uint64_t(xr - xl + 1);
+  if (float32Rows_) {
+    if (spanLoop_ == SpanLoop::StencilCount) return stencilCountRow(t, y, xl, xr);
+    if (spanLoop_ == SpanLoop::DepthOnly) return depthOnlyRow(t, y, xl, xr);
+  }
+  uint32_t codes[kChunk];
   for (int x = xl; x <= xr; x += kChunk) {
     const int n = std::min(kChunk, xr - x + 1);
     depthCodes(t, y, x, n, codes);
@@ -238,6 +243,125 @@ void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, 
     if (state_.depthClamp) z = std::clamp(z, depthLo_, depthHi_);
     codes[i] = fb_.depthCodec().encode(z);
   }
+}
+
+namespace {
+
+using v4d = double __attribute__((vector_size(32)));
+using v4f = float __attribute__((vector_size(16)));
+using v4u = uint32_t __attribute__((vector_size(16)));
+using v4b = uint8_t __attribute__((vector_size(4)));
+
+template <CompareFunc F>
+inline v4u passes4(v4u incoming, v4u stored) {  // lanes all ones where the test passes
+  if constexpr (F == CompareFunc::Never) return v4u{};
+  else if constexpr (F == CompareFunc::Less) return incoming < stored;
+  else if constexpr (F == CompareFunc::Equal) return incoming == stored;
+  else if constexpr (F == CompareFunc::LEqual) return incoming <= stored;
+  else if constexpr (F == CompareFunc::Greater) return incoming > stored;
+  else if constexpr (F == CompareFunc::NotEqual) return incoming != stored;
+  else if constexpr (F == CompareFunc::GEqual) return incoming >= stored;
+  else return v4u{} - 1;
+}
+
+// Float32 depth codes of four pixels of a row, as depthCodes computes them.
+struct RowDepth {
+  double z0, fx0, dzdx, rowPart, offset;
+  RowDepth(const TriangleSetup& t, int y)
+      : z0(t.v[0].z), fx0(t.v[0].fx), dzdx(t.dzdx), rowPart(t.dzdy * ((double(y) + 0.5) - t.v[0].fy)),
+        offset(t.depthOffset) {}
+  v4u codes4(int x) const {
+    const v4d lane = {0.5, 1.5, 2.5, 3.5};
+    const v4d cx = double(x) + lane;
+    const v4d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
+    const v4d clamped = z > 0.0 ? (1.0 < z ? v4d{} + 1.0 : z) : v4d{};
+    const v4f f = __builtin_convertvector(clamped, v4f);
+    v4u codes;
+    std::memcpy(&codes, &f, sizeof codes);
+    return codes;
+  }
+  uint32_t code(int x) const {
+    const double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
+    const double c = z > 0.0 ? std::min(z, 1.0) : 0.0;
+    return std::bit_cast<uint32_t>(float(c));
+  }
+};
+
+}  // namespace
+
+// stencilCountChunk for a whole row in the default depth format (Float32, no depth clamp), without
+// the detour through a codes array: four pixels per step from depth to stencil.
+void FragmentProcessor::stencilCountRow(const TriangleSetup& t, int y, int xl, int xr) {
+  const StencilFaceState& face = state_.stencil[t.facing];
+  uint8_t onPass = 0, onFail = 0;
+  wrapDelta(face.dppass, onPass);
+  wrapDelta(face.dpfail, onFail);
+  const size_t at = fb_.index(xl, y);
+  uint8_t* stencil = fb_.stencil().data() + at;
+  const uint32_t* depth = fb_.depthCodes().data() + at;
+  const int n = xr - xl + 1;
+  const RowDepth row(t, y);
+  int failed = 0;
+  withCompare(state_.depthFunc, [&failed, &row, n, xl, stencil, depth, onPass, onFail](auto f) {
+    constexpr CompareFunc F = decltype(f)::value;
+    const v4u passDelta = v4u{} + onPass, failDelta = v4u{} + onFail;
+    v4u fails{};
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      v4u stored;
+      std::memcpy(&stored, depth + i, sizeof stored);
+      const v4u pass = passes4<F>(row.codes4(xl + i), stored);
+      fails += ~pass & 1u;
+      const v4b delta = __builtin_convertvector(pass ? passDelta : failDelta, v4b);
+      v4b bytes;
+      std::memcpy(&bytes, stencil + i, sizeof bytes);
+      bytes += delta;
+      std::memcpy(stencil + i, &bytes, sizeof bytes);
+    }
+    int tail = 0;
+    for (; i < n; ++i) {
+      const bool pass = passes<F>(row.code(xl + i), depth[i]);
+      tail += !pass;
+      stencil[i] = uint8_t(stencil[i] + (pass ? onPass : onFail));
+    }
+    failed = int(fails[0] + fails[1] + fails[2] + fails[3]) + tail;
+  });
+  stats_.depthFailed += uint64_t(failed);
+  stats_.stencilWrites += uint64_t(onPass != 0 ? n - failed : 0) + uint64_t(onFail != 0 ? failed : 0);
+}
+
+// depthOnlyChunk for a whole row in the default depth format, four pixels per step.
+void FragmentProcessor::depthOnlyRow(const TriangleSetup& t, int y, int xl, int xr) {
+  if (!usesDepth_) return;
+  uint32_t* depth = fb_.depthCodes().data() + fb_.index(xl, y);
+  const int n = xr - xl + 1;
+  const RowDepth row(t, y);
+  int failed = 0;
+  withCompare(state_.depthFunc, [&failed, &row, n, xl, depth, write = writesDepth_](auto f) {
+    constexpr CompareFunc F = decltype(f)::value;
+    v4u fails{};
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      v4u stored;
+      std::memcpy(&stored, depth + i, sizeof stored);
+      const v4u codes = row.codes4(xl + i);
+      const v4u pass = passes4<F>(codes, stored);
+      fails += ~pass & 1u;
+      if (write) {
+        const v4u next = pass ? codes : stored;
+        std::memcpy(depth + i, &next, sizeof next);
+      }
+    }
+    int tail = 0;
+    for (; i < n; ++i) {
+      const uint32_t code = row.code(xl + i);
+      const bool pass = passes<F>(code, depth[i]);
+      tail += !pass;
+      if (write && pass) depth[i] = code;
+    }
+    failed = int(fails[0] + fails[1] + fails[2] + fails[3]) + tail;
+  });
+  stats_.depthFailed += uint64_t(failed);
 }
 
 // Shadow-volume counting: the stencil test always passes, so each fragment adds the byte of its
