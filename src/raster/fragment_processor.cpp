@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "raster/fragment_ops.h"
+#include "raster/rasterizer.h"
 
 namespace shadowref {
 
@@ -198,10 +199,6 @@ void FragmentProcessor::processSpan(const TriangleSetup& t, int y, int xl, int x
 
 void FragmentProcessor::runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]) {
   stats_.fragments += uint64_t(xr - xl + 1);
-  if (float32Rows_) {
-    if (spanLoop_ == SpanLoop::StencilCount) return stencilCountRow(t, y, xl, xr);
-    if (spanLoop_ == SpanLoop::DepthOnly) return depthOnlyRow(t, y, xl, xr);
-  }
   uint32_t codes[kChunk];
   for (int x = xl; x <= xr; x += kChunk) {
     const int n = std::min(kChunk, xr - x + 1);
@@ -289,79 +286,100 @@ struct RowDepth {
 
 }  // namespace
 
-// stencilCountChunk for a whole row in the default depth format (Float32, no depth clamp), without
-// the detour through a codes array: four pixels per step from depth to stencil.
-void FragmentProcessor::stencilCountRow(const TriangleSetup& t, int y, int xl, int xr) {
+void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& region) {
+  const bool watched = watch_ && watch_->observer && watch_->x >= t.minX && watch_->x <= t.maxX &&
+                       watch_->y >= t.minY && watch_->y <= t.maxY;
+  if (float32Rows_ && !watched) {
+    if (spanLoop_ == SpanLoop::StencilCount) return countTriangle(t, region);
+    if (spanLoop_ == SpanLoop::DepthOnly) return depthTriangle(t, region);
+  }
+  rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { processSpan(t, y, xl, xr, e); });
+}
+
+// stencilCountChunk for a whole triangle in the default depth format (Float32, no depth clamp):
+// rows straight from the rasterizer, four pixels per step from depth to stencil, with the depth
+// function and the two stencil deltas fixed once per triangle.
+void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region) {
   const StencilFaceState& face = state_.stencil[t.facing];
   uint8_t onPass = 0, onFail = 0;
   wrapDelta(face.dppass, onPass);
   wrapDelta(face.dpfail, onFail);
-  const size_t at = fb_.index(xl, y);
-  uint8_t* stencil = fb_.stencil().data() + at;
-  const uint32_t* depth = fb_.depthCodes().data() + at;
-  const int n = xr - xl + 1;
-  const RowDepth row(t, y);
-  int failed = 0;
-  withCompare(state_.depthFunc, [&failed, &row, n, xl, stencil, depth, onPass, onFail](auto f) {
+  uint8_t* const stencilBase = fb_.stencil().data();
+  const uint32_t* const depthBase = fb_.depthCodes().data();
+  uint64_t fragments = 0, failed = 0;
+  withCompare(state_.depthFunc, [&](auto f) {
     constexpr CompareFunc F = decltype(f)::value;
     const v4u passDelta = v4u{} + onPass, failDelta = v4u{} + onFail;
-    v4u fails{};
-    int i = 0;
-    for (; i + 4 <= n; i += 4) {
-      v4u stored;
-      std::memcpy(&stored, depth + i, sizeof stored);
-      const v4u pass = passes4<F>(row.codes4(xl + i), stored);
-      fails += ~pass & 1u;
-      const v4b delta = __builtin_convertvector(pass ? passDelta : failDelta, v4b);
-      v4b bytes;
-      std::memcpy(&bytes, stencil + i, sizeof bytes);
-      bytes += delta;
-      std::memcpy(stencil + i, &bytes, sizeof bytes);
-    }
-    int tail = 0;
-    for (; i < n; ++i) {
-      const bool pass = passes<F>(row.code(xl + i), depth[i]);
-      tail += !pass;
-      stencil[i] = uint8_t(stencil[i] + (pass ? onPass : onFail));
-    }
-    failed = int(fails[0] + fails[1] + fails[2] + fails[3]) + tail;
+    rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t*) {
+      const size_t at = fb_.index(xl, y);
+      uint8_t* stencil = stencilBase + at;
+      const uint32_t* depth = depthBase + at;
+      const int n = xr - xl + 1;
+      const RowDepth row(t, y);
+      v4u fails{};
+      int i = 0;
+      for (; i + 4 <= n; i += 4) {
+        v4u stored;
+        std::memcpy(&stored, depth + i, sizeof stored);
+        const v4u pass = passes4<F>(row.codes4(xl + i), stored);
+        fails += ~pass & 1u;
+        const v4b delta = __builtin_convertvector(pass ? passDelta : failDelta, v4b);
+        v4b bytes;
+        std::memcpy(&bytes, stencil + i, sizeof bytes);
+        bytes += delta;
+        std::memcpy(stencil + i, &bytes, sizeof bytes);
+      }
+      uint64_t rowFails = fails[0] + fails[1] + fails[2] + fails[3];
+      for (; i < n; ++i) {
+        const bool pass = passes<F>(row.code(xl + i), depth[i]);
+        rowFails += !pass;
+        stencil[i] = uint8_t(stencil[i] + (pass ? onPass : onFail));
+      }
+      fragments += uint64_t(n);
+      failed += rowFails;
+    });
   });
-  stats_.depthFailed += uint64_t(failed);
-  stats_.stencilWrites += uint64_t(onPass != 0 ? n - failed : 0) + uint64_t(onFail != 0 ? failed : 0);
+  stats_.fragments += fragments;
+  stats_.depthFailed += failed;
+  stats_.stencilWrites += (onPass != 0 ? fragments - failed : 0) + (onFail != 0 ? failed : 0);
 }
 
-// depthOnlyChunk for a whole row in the default depth format, four pixels per step.
-void FragmentProcessor::depthOnlyRow(const TriangleSetup& t, int y, int xl, int xr) {
-  if (!usesDepth_) return;
-  uint32_t* depth = fb_.depthCodes().data() + fb_.index(xl, y);
-  const int n = xr - xl + 1;
-  const RowDepth row(t, y);
-  int failed = 0;
-  withCompare(state_.depthFunc, [&failed, &row, n, xl, depth, write = writesDepth_](auto f) {
+// depthOnlyChunk for a whole triangle in the default depth format, four pixels per step.
+void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region) {
+  uint32_t* const depthBase = fb_.depthCodes().data();
+  uint64_t fragments = 0, failed = 0;
+  withCompare(state_.depthFunc, [&](auto f) {
     constexpr CompareFunc F = decltype(f)::value;
-    v4u fails{};
-    int i = 0;
-    for (; i + 4 <= n; i += 4) {
-      v4u stored;
-      std::memcpy(&stored, depth + i, sizeof stored);
-      const v4u codes = row.codes4(xl + i);
-      const v4u pass = passes4<F>(codes, stored);
-      fails += ~pass & 1u;
-      if (write) {
-        const v4u next = pass ? codes : stored;
-        std::memcpy(depth + i, &next, sizeof next);
+    rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t*) {
+      uint32_t* depth = depthBase + fb_.index(xl, y);
+      const int n = xr - xl + 1;
+      const RowDepth row(t, y);
+      v4u fails{};
+      int i = 0;
+      for (; i + 4 <= n; i += 4) {
+        v4u stored;
+        std::memcpy(&stored, depth + i, sizeof stored);
+        const v4u codes = row.codes4(xl + i);
+        const v4u pass = passes4<F>(codes, stored);
+        fails += ~pass & 1u;
+        if (writesDepth_) {
+          const v4u next = pass ? codes : stored;
+          std::memcpy(depth + i, &next, sizeof next);
+        }
       }
-    }
-    int tail = 0;
-    for (; i < n; ++i) {
-      const uint32_t code = row.code(xl + i);
-      const bool pass = passes<F>(code, depth[i]);
-      tail += !pass;
-      if (write && pass) depth[i] = code;
-    }
-    failed = int(fails[0] + fails[1] + fails[2] + fails[3]) + tail;
+      uint64_t rowFails = fails[0] + fails[1] + fails[2] + fails[3];
+      for (; i < n; ++i) {
+        const uint32_t code = row.code(xl + i);
+        const bool pass = passes<F>(code, depth[i]);
+        rowFails += !pass;
+        if (writesDepth_ && pass) depth[i] = code;
+      }
+      fragments += uint64_t(n);
+      failed += rowFails;
+    });
   });
-  stats_.depthFailed += uint64_t(failed);
+  stats_.fragments += fragments;
+  stats_.depthFailed += failed;
 }
 
 // Shadow-volume counting: the stencil test always passes, so each fragment adds the byte of its

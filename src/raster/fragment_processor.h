@@ -40,6 +40,9 @@ class FragmentProcessor {
       processImpl<false>(t, x, y, e0, e1, e2);
   }
 
+  // Every covered pixel of the triangle inside `region`, row by row.
+  void processTriangle(const TriangleSetup& t, const Rect& region);
+
   // Every pixel of row y from xl to xr (inclusive); e holds the unbiased edge values at (xl, y).
   void processSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
 
@@ -51,8 +54,8 @@ class FragmentProcessor {
   SpanLoop chooseSpanLoop() const;
   void runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
   void depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const;
-  void stencilCountRow(const TriangleSetup& t, int y, int xl, int xr);
-  void depthOnlyRow(const TriangleSetup& t, int y, int xl, int xr);
+  void countTriangle(const TriangleSetup& t, const Rect& region);
+  void depthTriangle(const TriangleSetup& t, const Rect& region);
   void stencilCountChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes);
   void depthOnlyChunk(size_t at, int n, const uint32_t* codes);
   void generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl, const int64_t e[3]);
@@ -75,7 +78,7 @@ class FragmentProcessor {
   int varyingCount_;
   double depthLo_, depthHi_;
   SpanLoop spanLoop_;
-  bool float32Rows_;  // depth tested in Float32 without clamp: counting and depth-only rows are fused
+  bool float32Rows_;  // depth tested in Float32 without clamp: counting and depth-only triangles are fused
   const glm::dvec4* constantColor_ = nullptr;  // the shader's colour when it has only one
 };
 

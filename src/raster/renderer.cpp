@@ -216,7 +216,7 @@ void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, Fragment
     });
     return;
   }
-  rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { fragments.processSpan(t, y, xl, xr, e); });
+  fragments.processTriangle(t, region);
 }
 
 void Renderer::rasterizeAll(const DrawCall& call, const Rect& region) {
