@@ -480,10 +480,89 @@ void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n
   writeColors(color, survivors, survived, shaded);
 }
 
+// testChunk for the states of the colour passes, where no stencil value can change (stencil
+// unused, or every op KEEP, or a zero write mask) and the functions are the usual ones: the tests
+// as lane masks, four pixels per step. Returns -1 for any other state.
+int FragmentProcessor::filterChunk(const StencilFaceState& sface, size_t at, int n, const uint32_t* codes,
+                                   int* survivors) {
+  const bool stencilWrites = usesStencil_ && sface.writeMask != 0 &&
+                             (sface.sfail != StencilOp::Keep || sface.dpfail != StencilOp::Keep ||
+                              sface.dppass != StencilOp::Keep);
+  const CompareFunc stencilFunc = usesStencil_ ? sface.func : CompareFunc::Always;
+  const CompareFunc depthFunc = usesDepth_ ? state_.depthFunc : CompareFunc::Always;
+  auto usual = [](CompareFunc f, CompareFunc a, CompareFunc b) { return f == CompareFunc::Always || f == a || f == b; };
+  if (stencilWrites || !usual(stencilFunc, CompareFunc::Equal, CompareFunc::NotEqual) ||
+      !usual(depthFunc, CompareFunc::Less, CompareFunc::LEqual))
+    return -1;
+  const uint8_t* stencil = usesStencil_ ? fb_.stencil().data() + at : nullptr;
+  uint32_t* depth = usesDepth_ ? fb_.depthCodes().data() + at : nullptr;
+  const uint32_t ref = uint32_t(std::clamp(sface.ref, 0, 255)) & sface.mask, mask = sface.mask;
+  int survived = 0;
+  uint64_t stencilFailed = 0, depthFailed = 0;
+  auto run = [&](auto sf, auto df) {
+    constexpr CompareFunc SF = decltype(sf)::value, DF = decltype(df)::value;
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      v4u sPass = v4u{} - 1, dPass = v4u{} - 1;
+      if constexpr (SF != CompareFunc::Always) {
+        v4b bytes;
+        std::memcpy(&bytes, stencil + i, sizeof bytes);
+        sPass = passes4<SF>(v4u{} + ref, __builtin_convertvector(bytes, v4u) & mask);
+      }
+      v4u code, stored{};
+      std::memcpy(&code, codes + i, sizeof code);
+      if constexpr (DF != CompareFunc::Always) {
+        std::memcpy(&stored, depth + i, sizeof stored);
+        dPass = passes4<DF>(code, stored);
+      }
+      const v4u both = sPass & dPass;
+      if (writesDepth_) {
+        const v4u next = both ? code : stored;
+        std::memcpy(depth + i, &next, sizeof next);
+      }
+      const v4u sFail = ~sPass & 1u, dFail = sPass & ~dPass & 1u;
+      stencilFailed += sFail[0] + sFail[1] + sFail[2] + sFail[3];
+      depthFailed += dFail[0] + dFail[1] + dFail[2] + dFail[3];
+      for (int lane = 0; lane < 4; ++lane) {
+        survivors[survived] = i + lane;
+        survived += int(both[lane] & 1u);
+      }
+    }
+    for (; i < n; ++i) {
+      if (!passes<SF>(ref, uint32_t(SF == CompareFunc::Always ? 0 : stencil[i]) & mask)) {
+        ++stencilFailed;
+        continue;
+      }
+      if (!passes<DF>(codes[i], DF == CompareFunc::Always ? 0 : depth[i])) {
+        ++depthFailed;
+        continue;
+      }
+      if (writesDepth_) depth[i] = codes[i];
+      survivors[survived++] = i;
+    }
+  };
+  auto withDepth = [&](auto sf) {
+    switch (depthFunc) {
+      case CompareFunc::Less: run(sf, std::integral_constant<CompareFunc, CompareFunc::Less>{}); break;
+      case CompareFunc::LEqual: run(sf, std::integral_constant<CompareFunc, CompareFunc::LEqual>{}); break;
+      default: run(sf, std::integral_constant<CompareFunc, CompareFunc::Always>{}); break;
+    }
+  };
+  switch (stencilFunc) {
+    case CompareFunc::Equal: withDepth(std::integral_constant<CompareFunc, CompareFunc::Equal>{}); break;
+    case CompareFunc::NotEqual: withDepth(std::integral_constant<CompareFunc, CompareFunc::NotEqual>{}); break;
+    default: withDepth(std::integral_constant<CompareFunc, CompareFunc::Always>{}); break;
+  }
+  stats_.stencilFailed += stencilFailed;
+  stats_.depthFailed += depthFailed;
+  return survived;
+}
+
 // Stencil test, depth test, stencil update and depth write for a chunk, as processImpl does them;
 // returns how many fragments passed both tests and lists them in `survivors`.
 int FragmentProcessor::testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors) {
   const StencilFaceState& sface = state_.stencil[t.facing];
+  if (const int survived = filterChunk(sface, at, n, codes, survivors); survived >= 0) return survived;
   uint8_t* stencil = usesStencil_ ? fb_.stencil().data() + at : nullptr;
   uint32_t* depth = usesDepth_ ? fb_.depthCodes().data() + at : nullptr;
   int survived = 0;
@@ -524,20 +603,33 @@ void FragmentProcessor::writeColors(glm::vec4* color, const int* survivors, int 
   const BlendState& b = state_.blend;
   const bool allChannels = state_.colorMask[0] && state_.colorMask[1] && state_.colorMask[2] && state_.colorMask[3];
   auto source = [&](int k) -> const glm::dvec4& { return shaded ? shaded[k] : *constantColor_; };
+  static_assert(sizeof(glm::dvec4) == sizeof(v4d) && sizeof(glm::vec4) == sizeof(v4f));
+  // std::clamp(c, 0.0, 1.0) per channel (NaN and -0.0 pass through unchanged), then float().
+  auto clamped = [](v4d c) { return 1.0 < (c < 0.0 ? v4d{} : c) ? v4d{} + 1.0 : (c < 0.0 ? v4d{} : c); };
+  auto load = [](const glm::dvec4& c) {
+    v4d v;
+    std::memcpy(&v, &c, sizeof v);
+    return v;
+  };
+  auto store = [](glm::vec4& dst, v4d c) {
+    const v4f f = __builtin_convertvector(c, v4f);
+    std::memcpy(&dst, &f, sizeof f);
+  };
   if (allChannels && !b.enabled) {
     if (!shaded) {
       const glm::vec4 value = writeColor(glm::vec4(0.0f), *constantColor_, state_.colorMask);
       for (int k = 0; k < count; ++k) color[survivors[k]] = value;
       return;
     }
-    for (int k = 0; k < count; ++k) color[survivors[k]] = writeColor(glm::vec4(0.0f), shaded[k], state_.colorMask);
+    for (int k = 0; k < count; ++k) store(color[survivors[k]], clamped(load(shaded[k])));
     return;
   }
   if (allChannels && b.enabled && b.src == BlendFactor::One && b.dst == BlendFactor::One) {
     for (int k = 0; k < count; ++k) {
       glm::vec4& dst = color[survivors[k]];
-      const glm::dvec4 sum = glm::clamp(source(k), 0.0, 1.0) + glm::dvec4(dst);
-      dst = writeColor(dst, sum, state_.colorMask);
+      v4f stored;
+      std::memcpy(&stored, &dst, sizeof stored);
+      store(dst, clamped(clamped(load(source(k))) + __builtin_convertvector(stored, v4d)));
     }
     return;
   }

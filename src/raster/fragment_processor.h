@@ -60,6 +60,7 @@ class FragmentProcessor {
   void depthOnlyChunk(size_t at, int n, const uint32_t* codes);
   void generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl, const int64_t e[3]);
   int testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors);
+  int filterChunk(const StencilFaceState& face, size_t at, int n, const uint32_t* codes, int* survivors);
   void writeColors(glm::vec4* color, const int* survivors, int count, const glm::dvec4* shaded) const;
 
   // One body for both paths; the watched one also records a FragmentEvent (pixel history).

@@ -24,7 +24,8 @@ StencilOp randomOp(TestRandom& r, bool wrapOnly) {
   return StencilOp(r.below(8));
 }
 
-// A state of one of the three shapes the span loops distinguish, or anything at all.
+// A state of one of the shapes the span loops distinguish (0 volume pass, 1 depth map, 3 colour
+// pass that only reads the stencil), or anything at all (2).
 RenderState randomState(TestRandom& r, const Framebuffer& fb, int shape) {
   RenderState s = fullViewportState(fb);
   s.depthTest = r.below(5) != 0;
@@ -60,6 +61,19 @@ RenderState randomState(TestRandom& r, const Framebuffer& fb, int shape) {
   } else if (shape == 1) {  // a depth-map pass
     s.stencilTest = false;
     s.colorMask = {false, false, false, false};
+  } else if (shape == 3) {  // an ambient, lit or darken pass: the stencil only filters
+    static const CompareFunc stencilFuncs[] = {CompareFunc::Equal, CompareFunc::NotEqual, CompareFunc::Always};
+    static const CompareFunc depthFuncs[] = {CompareFunc::Less, CompareFunc::LEqual};
+    s.depthFunc = depthFuncs[r.below(2)];
+    for (StencilFaceState& f : s.stencil) {
+      f.func = stencilFuncs[r.below(3)];
+      f.ref = r.below(3);
+      f.sfail = f.dpfail = f.dppass = StencilOp::Keep;
+      if (r.below(4) == 0) {  // ops that write, behind a zero write mask
+        f.dppass = StencilOp::Invert;
+        f.writeMask = 0;
+      }
+    }
   }
   return s;
 }
@@ -103,7 +117,7 @@ bool sameColor(const Framebuffer& a, const Framebuffer& b) {
 }  // namespace
 
 TEST_CASE("span loops leave the same bytes as the one-fragment path, in random states", "[raster][spans]") {
-  const int shape = GENERATE(0, 1, 2);
+  const int shape = GENERATE(0, 1, 2, 3);
   const DepthFormat format = GENERATE(DepthFormat::Float32, DepthFormat::Unorm24);
   for (uint64_t seed = 1; seed <= 12; ++seed) {
     INFO("shape " << shape << ", seed " << seed);
