@@ -179,18 +179,36 @@ void Renderer::draw(const DrawCall& call) {
     for (const std::exception_ptr& e : errors)
       if (e) std::rethrow_exception(e);
   }
-  setups_.clear();
+  PendingDraw pending;
+  pending.first = pendingSetups_.size();
   for (size_t c = 0; c < chunks; ++c) {
-    const AssemblyWorkspace& ws = assembly_[c];
-    setups_.insert(setups_.end(), ws.setups.begin(), ws.setups.end());
+    AssemblyWorkspace& ws = assembly_[c];
+    pendingSetups_.insert(pendingSetups_.end(), ws.setups.begin(), ws.setups.end());
     stats_.trianglesClipped += ws.stats.trianglesClipped;
     stats_.trianglesCulled += ws.stats.trianglesCulled;
+    if (!ws.clippedVertices.empty()) {
+      pendingClipped_.push_back(std::move(ws.clippedVertices));
+      ws.clippedVertices = {};
+    }
   }
-  stats_.trianglesRasterized += setups_.size();
+  pending.count = pendingSetups_.size() - pending.first;
+  stats_.trianglesRasterized += pending.count;
 
-  const Rect region = drawRegion(state, fb_);
-  if (region.width == 0 || region.height == 0 || setups_.empty()) return;
-  rasterizeAll(call, region);
+  pending.region = drawRegion(state, fb_);
+  if (pending.region.width > 0 && pending.region.height > 0 && pending.count > 0) {
+    pending.state = state;
+    pending.shader = call.shader;
+    pending.watch = watch_;
+    pending.minY = pending.region.y + pending.region.height;
+    for (size_t i = pending.first; i < pending.first + pending.count; ++i) {
+      pending.minY = std::min(pending.minY, pendingSetups_[i].minY);
+      pending.maxY = std::max(pending.maxY, pendingSetups_[i].maxY);
+    }
+    pending.minY = std::max(pending.minY, pending.region.y);
+    pending.maxY = std::min(pending.maxY, pending.region.y + pending.region.height - 1);
+    if (pending.minY <= pending.maxY) pending_.push_back(pending);
+  }
+  if (deferDepth_ == 0) flush();
 }
 
 namespace {
@@ -198,9 +216,10 @@ constexpr int kBandRows = 16;
 // Below this many candidate pixels a draw is not worth waking the other threads for.
 constexpr int64_t kParallelThreshold = 2048;
 
-int64_t candidatePixels(const std::vector<TriangleSetup>& setups, const Rect& r) {
+int64_t candidatePixels(const std::vector<TriangleSetup>& setups, size_t first, size_t count, const Rect& r) {
   int64_t sum = 0;
-  for (const TriangleSetup& t : setups) {
+  for (size_t i = first; i < first + count; ++i) {
+    const TriangleSetup& t = setups[i];
     const int64_t w = std::min(t.maxX, r.x + r.width - 1) - std::max(t.minX, r.x) + 1;
     const int64_t h = std::min(t.maxY, r.y + r.height - 1) - std::max(t.minY, r.y) + 1;
     if (w > 0 && h > 0) sum += w * h;
@@ -219,27 +238,50 @@ void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, Fragment
   fragments.processTriangle(t, region);
 }
 
-void Renderer::rasterizeAll(const DrawCall& call, const Rect& region) {
-  const RenderState& state = *call.state;
-  const int bands = (region.height + kBandRows - 1) / kBandRows;
-  if (!pool_ || bands < 2 || candidatePixels(setups_, region) < kParallelThreshold) {
-    FragmentProcessor fragments(fb_, state, call.shader, stats_, &watch_);
-    for (const TriangleSetup& t : setups_) rasterizeOne(t, region, fragments);
+// One pending draw's triangles inside rows [y0, y1].
+void Renderer::rasterizeBand(const PendingDraw& draw, int y0, int y1, RasterStats& stats) const {
+  Rect band = draw.region;
+  band.y = std::max(y0, draw.region.y);
+  band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
+  if (band.height <= 0 || draw.maxY < band.y || draw.minY >= band.y + band.height) return;
+  // The processor writes to fb_ through its own reference: rasterizing changes the framebuffer,
+  // not the renderer.
+  FragmentProcessor fragments(fb_, draw.state, draw.shader, stats, &draw.watch);
+  for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
+    const TriangleSetup& t = pendingSetups_[i];
+    if (t.maxY < band.y || t.minY >= band.y + band.height) continue;
+    rasterizeOne(t, band, fragments);
+  }
+}
+
+void Renderer::flush() {
+  if (pending_.empty()) {
+    pendingSetups_.clear();
+    pendingClipped_.clear();
     return;
   }
-  // Each band of rows belongs to one task, which replays every triangle in submission order.
-  bandStats_.assign(size_t(bands), RasterStats{});
-  pool_->run(bands, [&](int b) {
-    Rect band = region;
-    band.y = region.y + b * kBandRows;
-    band.height = std::min(kBandRows, region.y + region.height - band.y);
-    FragmentProcessor fragments(fb_, state, call.shader, bandStats_[size_t(b)], &watch_);
-    for (const TriangleSetup& t : setups_) {
-      if (t.maxY < band.y || t.minY >= band.y + band.height) continue;
-      rasterizeOne(t, band, fragments);
-    }
-  });
-  for (const RasterStats& s : bandStats_) stats_ += s;
+  int minY = fb_.height(), maxY = -1;
+  int64_t candidates = 0;
+  for (const PendingDraw& d : pending_) {
+    minY = std::min(minY, d.minY);
+    maxY = std::max(maxY, d.maxY);
+    if (candidates < kParallelThreshold) candidates += candidatePixels(pendingSetups_, d.first, d.count, d.region);
+  }
+  const int bands = (maxY - minY + kBandRows) / kBandRows;
+  if (!pool_ || bands < 2 || candidates < kParallelThreshold) {
+    for (const PendingDraw& d : pending_) rasterizeBand(d, minY, maxY, stats_);
+  } else {
+    // Each band of rows belongs to one task, which replays every draw in submission order.
+    bandStats_.assign(size_t(bands), RasterStats{});
+    pool_->run(bands, [&](int b) {
+      const int y0 = minY + b * kBandRows, y1 = std::min(maxY, y0 + kBandRows - 1);
+      for (const PendingDraw& d : pending_) rasterizeBand(d, y0, y1, bandStats_[size_t(b)]);
+    });
+    for (const RasterStats& s : bandStats_) stats_ += s;
+  }
+  pending_.clear();
+  pendingSetups_.clear();
+  pendingClipped_.clear();
 }
 
 }  // namespace shadowref

@@ -40,7 +40,8 @@ class Renderer {
   int threads() const { return pool_ ? pool_->threadCount() : 1; }
 
   // Allocates the buffers the state needs (colour when a shader writes, depth when the depth
-  // test is on, stencil when the stencil test is on), then draws.
+  // test is on, stencil when the stencil test is on), assembles and sets up the triangles, then
+  // rasterizes them — at once, or with a DeferredDraws alive, when the last one ends.
   void draw(const DrawCall& call);
 
   // The reference path: every fragment of every Renderer made after this call goes through the
@@ -49,6 +50,9 @@ class Renderer {
   static void useReferencePath(bool on);
 
   Framebuffer& framebuffer() { return fb_; }
+
+  // Rasterizes every draw made since the first DeferredDraws began (DeferredDraws calls it).
+  void flush();
   const RasterStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
 
@@ -76,7 +80,17 @@ class Renderer {
   void addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
                 const RenderState& state, AssemblyWorkspace& ws) const;
 
-  void rasterizeAll(const DrawCall& call, const Rect& region);
+  // A draw whose triangles are set up and wait to be rasterized, with a copy of its state.
+  struct PendingDraw {
+    RenderState state;
+    const FragmentShader* shader = nullptr;
+    PixelWatch watch;     // the pixel history's watch with this draw's index and tag
+    Rect region;          // drawRegion of the state
+    size_t first = 0, count = 0;  // its setups in pendingSetups_
+    int minY = 0, maxY = -1;      // the rows its triangles may touch
+  };
+  friend class DeferredDraws;
+  void rasterizeBand(const PendingDraw& draw, int y0, int y1, RasterStats& stats) const;
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 
   Framebuffer& fb_;
@@ -87,9 +101,36 @@ class Renderer {
   uint64_t drawCount_ = 0;
   bool referencePath_;
   // Per-draw scratch, kept to avoid allocation per call: one assembly workspace per chunk of
-  // triangles, and the setups of all chunks in submission order.
+  // triangles.
   std::vector<AssemblyWorkspace> assembly_;
-  std::vector<TriangleSetup> setups_;
+  // Draws waiting for rasterization, their setups in submission order, and the vertices clipping
+  // made for them (WindowVertex::source points there; a deque keeps its elements in place when
+  // it is moved).
+  std::vector<PendingDraw> pending_;
+  std::vector<TriangleSetup> pendingSetups_;
+  std::vector<std::deque<ClipVertex>> pendingClipped_;
+  int deferDepth_ = 0;
+};
+
+// While one of these lives, the renderer's draws are only set up; when the last one ends, all of
+// them are rasterized together, every band of rows by one thread replaying the draws in the order
+// they were made (the same bytes as drawing them one by one, for any thread count). A pass of many
+// small draws — the city's houses and their volumes — then keeps every thread busy.
+//
+// Whoever makes one keeps, until it ends, every shader handed to those draws, and for shaded
+// draws the vertices (their varyings are read when the fragments are shaded). The framebuffer must
+// not be read or changed by other means (clears, callbacks) while one lives.
+class DeferredDraws {
+ public:
+  explicit DeferredDraws(Renderer& renderer) : renderer_(renderer) { ++renderer_.deferDepth_; }
+  ~DeferredDraws() {
+    if (--renderer_.deferDepth_ == 0) renderer_.flush();
+  }
+  DeferredDraws(const DeferredDraws&) = delete;
+  DeferredDraws& operator=(const DeferredDraws&) = delete;
+
+ private:
+  Renderer& renderer_;
 };
 
 // The rectangle of pixels a draw may touch: viewport, framebuffer and (if on) scissor.

@@ -147,26 +147,30 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
 
   std::vector<ClipVertex> vertices;
   std::vector<uint32_t> indices;
-  for (size_t i = 0; i < instances.size(); ++i) {
-    const Instance& inst = instances[i];
-    if (!inst.shadowMesh || !withinRange(light, inst.shadowBounds)) continue;
-    const VertexTransform xf{view * inst.world, projection};
-    const Mesh& mesh = *inst.shadowMesh;
-    vertices.resize(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v) vertices[v].position = xf.toClip(glm::dvec4(mesh.positions[v], 1.0));
-    indices.clear();
-    if (clipNear > 0.0) {
-      appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, vertices, indices);
-    } else {
-      for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+  {
+    // Depth only: no shader, so `vertices` may be refilled before the draws are rasterized.
+    const DeferredDraws deferred(renderer);
+    for (size_t i = 0; i < instances.size(); ++i) {
+      const Instance& inst = instances[i];
+      if (!inst.shadowMesh || !withinRange(light, inst.shadowBounds)) continue;
+      const VertexTransform xf{view * inst.world, projection};
+      const Mesh& mesh = *inst.shadowMesh;
+      vertices.resize(mesh.positions.size());
+      for (size_t v = 0; v < mesh.positions.size(); ++v) vertices[v].position = xf.toClip(glm::dvec4(mesh.positions[v], 1.0));
+      indices.clear();
+      if (clipNear > 0.0) {
+        appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, vertices, indices);
+      } else {
+        for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+      }
+      RenderState mirrored;
+      DrawCall call;
+      call.state = &stateFor(state, inst, mirrored);
+      call.vertices = vertices;
+      call.indices = indices;
+      call.tag = drawTag(DrawKind::ShadowMap, int(i));
+      renderer.draw(call);
     }
-    RenderState mirrored;
-    DrawCall call;
-    call.state = &stateFor(state, inst, mirrored);
-    call.vertices = vertices;
-    call.indices = indices;
-    call.tag = drawTag(DrawKind::ShadowMap, int(i));
-    renderer.draw(call);
   }
   stats += renderer.stats();
   DepthTexture tex;

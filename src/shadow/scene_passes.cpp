@@ -1,6 +1,8 @@
 #include "shadow/scene_passes.h"
 
 #include <cmath>
+#include <deque>
+#include <memory>
 #include <numbers>
 
 namespace shadowref {
@@ -89,8 +91,14 @@ bool withinRange(const Light& light, const Aabb& b) {
 
 namespace {
 
+// What a pass's deferred draws need alive until they are rasterized (DeferredDraws).
+struct PassResources {
+  std::vector<std::unique_ptr<FragmentShader>> shaders;
+  std::deque<std::vector<ClipVertex>> vertices;  // Gouraud: the lit copies of the vertices
+};
+
 void drawInstance(Renderer& renderer, const RenderState& state, const PreparedInstance& p, const LightingSetup& lighting,
-                  const Material& material, DrawKind kind) {
+                  const Material& material, DrawKind kind, PassResources& keep) {
   RenderState mirrored;
   DrawCall call;
   call.state = &stateFor(state, *p.instance, mirrored);
@@ -99,30 +107,25 @@ void drawInstance(Renderer& renderer, const RenderState& state, const PreparedIn
   if (material.shading == ShadingModel::PerPixel && lighting.lights.empty()) {
     // Ambient only: shadePoint returns the ambient term for every fragment, so the rasterizer is
     // told it is a constant (same bits, no interpolation).
-    const ConstantColorShader shader(glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0));
+    keep.shaders.push_back(std::make_unique<ConstantColorShader>(
+        glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0)));
     call.vertices = p.vertices;
-    call.shader = &shader;
-    renderer.draw(call);
-    return;
-  }
-  if (material.shading == ShadingModel::PerPixel) {
-    const PerPixelLightingShader shader(lighting);
+  } else if (material.shading == ShadingModel::PerPixel) {
+    keep.shaders.push_back(std::make_unique<PerPixelLightingShader>(lighting));
     call.vertices = p.vertices;
-    call.shader = &shader;
-    renderer.draw(call);
-    return;
+  } else {
+    // Gouraud: light each vertex, interpolate the colour.
+    std::vector<ClipVertex>& lit = keep.vertices.emplace_back(p.vertices);
+    for (ClipVertex& v : lit) {
+      const glm::dvec3 pos(v.varyings[kVaryingPosition], v.varyings[kVaryingPosition + 1], v.varyings[kVaryingPosition + 2]);
+      const glm::dvec3 n(v.varyings[kVaryingNormal], v.varyings[kVaryingNormal + 1], v.varyings[kVaryingNormal + 2]);
+      const glm::dvec3 c = gouraudVertexColor(lighting, pos, n);
+      for (int k = 0; k < 3; ++k) v.varyings[kVaryingColor + k] = c[k];
+    }
+    keep.shaders.push_back(std::make_unique<GouraudShader>());
+    call.vertices = lit;
   }
-  // Gouraud: light each vertex, interpolate the colour.
-  std::vector<ClipVertex> lit(p.vertices);
-  for (ClipVertex& v : lit) {
-    const glm::dvec3 pos(v.varyings[kVaryingPosition], v.varyings[kVaryingPosition + 1], v.varyings[kVaryingPosition + 2]);
-    const glm::dvec3 n(v.varyings[kVaryingNormal], v.varyings[kVaryingNormal + 1], v.varyings[kVaryingNormal + 2]);
-    const glm::dvec3 c = gouraudVertexColor(lighting, pos, n);
-    for (int k = 0; k < 3; ++k) v.varyings[kVaryingColor + k] = c[k];
-  }
-  const GouraudShader shader;
-  call.vertices = lit;
-  call.shader = &shader;
+  call.shader = keep.shaders.back().get();
   renderer.draw(call);
 }
 
@@ -131,6 +134,8 @@ void drawInstance(Renderer& renderer, const RenderState& state, const PreparedIn
 void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
              std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
              DrawKind kind) {
+  PassResources keep;  // declared first: outlives the deferred draws, which end first
+  const DeferredDraws deferred(renderer);
   for (const PreparedInstance& p : prepared) {
     const Material& material = scene.materials.at(size_t(p.instance->material));
     LightingSetup lighting;
@@ -141,7 +146,7 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
     for (const Light& light : lights)
       if (withinRange(light, p.instance->worldBounds)) lighting.lights.push_back(toPhongLight(light));
     if (!includeAmbient && lighting.lights.empty()) continue;
-    drawInstance(renderer, state, p, lighting, material, kind);
+    drawInstance(renderer, state, p, lighting, material, kind, keep);
   }
 }
 
@@ -152,6 +157,7 @@ void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scen
 
 void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared,
                    DrawKind kind) {
+  const DeferredDraws deferred(renderer);
   for (const PreparedInstance& p : prepared) {
     RenderState mirrored;
     DrawCall call;

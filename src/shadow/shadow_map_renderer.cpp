@@ -24,8 +24,8 @@ namespace {
 // as in the documents, that is (ambient + light) * (1 or the compare-fail value).
 class ShadowMappedShader final : public FragmentShader {
  public:
-  ShadowMappedShader(const LightingSetup& setup, const std::vector<const LightShadow*>& shadows)
-      : ambient_(ambientTerm(setup.material, setup.globalAmbient)), eye_(setup.eye), shadows_(shadows) {
+  ShadowMappedShader(const LightingSetup& setup, std::vector<const LightShadow*> shadows)
+      : ambient_(ambientTerm(setup.material, setup.globalAmbient)), eye_(setup.eye), shadows_(std::move(shadows)) {
     for (const PhongLight& light : setup.lights) {
       inRange_.push_back(light.position != glm::dvec4(0.0));
       terms_.push_back(lightTerms(light, setup.material));
@@ -52,12 +52,14 @@ class ShadowMappedShader final : public FragmentShader {
   glm::dvec3 ambient_, eye_;
   std::vector<LightTerms> terms_;
   std::vector<bool> inRange_;  // a light out of range is given as PhongLight{0}: no contribution
-  const std::vector<const LightShadow*>& shadows_;
+  std::vector<const LightShadow*> shadows_;
 };
 
 // Step 2 for one set of lights (one accumulation frame).
 void drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
                     const std::vector<PreparedInstance>& prepared, const std::vector<std::unique_ptr<LightShadow>>& shadows) {
+  std::vector<std::unique_ptr<ShadowMappedShader>> keep;  // outlives the deferred draws
+  const DeferredDraws deferred(renderer);
   for (const PreparedInstance& p : prepared) {
     const Material& material = scene.materials.at(size_t(p.instance->material));
     LightingSetup lighting;
@@ -70,13 +72,13 @@ void drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& s
       // A light out of range (000 §4.3.1) contributes nothing but its share of the ambient.
       lighting.lights.push_back(withinRange(s->light, p.instance->worldBounds) ? toPhongLight(s->light) : PhongLight{glm::dvec4(0.0)});
     }
-    const ShadowMappedShader shader(lighting, active);
+    keep.push_back(std::make_unique<ShadowMappedShader>(lighting, std::move(active)));
     RenderState mirrored;
     DrawCall call;
     call.state = &stateFor(state, *p.instance, mirrored);
     call.vertices = p.vertices;
     call.indices = p.indices;
-    call.shader = &shader;
+    call.shader = keep.back().get();
     call.tag = drawTag(DrawKind::Lit, p.index);
     renderer.draw(call);
   }

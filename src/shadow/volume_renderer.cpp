@@ -90,6 +90,9 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
                            VolumeDraw& scratch) {
   LightTotals totals;
   const CountingOptions counting{scene.shadow.twoSidedStencil, scene.shadow.wrapOps};
+  // The volumes have no shader and their setups carry their window positions, so the scratch
+  // volume may be rebuilt for the next caster before the draws are rasterized.
+  const DeferredDraws deferred(renderer);
   for (const PreparedInstance& p : prepared) {
     if (!castsFor(p, light)) continue;
     const StencilCounting how = countingFor(method, *p.instance, scene, view, light);
