@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 
 #include "raster/rasterizer.h"
@@ -138,7 +140,7 @@ void Renderer::assembleRange(const DrawCall& call, size_t first, size_t last, co
 namespace {
 // Triangle assembly is split into chunks of this many triangles when there are threads; each
 // chunk's setups are appended in chunk order, so the list is the same as on one thread.
-constexpr size_t kAssemblyChunk = 256;
+constexpr size_t kAssemblyChunk = 128;
 }  // namespace
 
 void Renderer::draw(const DrawCall& call) {
@@ -238,19 +240,25 @@ void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, Fragment
   fragments.processTriangle(t, region);
 }
 
-// One pending draw's triangles inside rows [y0, y1].
-void Renderer::rasterizeBand(const PendingDraw& draw, int y0, int y1, RasterStats& stats) const {
-  Rect band = draw.region;
-  band.y = std::max(y0, draw.region.y);
-  band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
-  if (band.height <= 0 || draw.maxY < band.y || draw.minY >= band.y + band.height) return;
-  // The processor writes to fb_ through its own reference: rasterizing changes the framebuffer,
-  // not the renderer.
-  FragmentProcessor fragments(fb_, draw.state, draw.shader, stats, &draw.watch);
-  for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
-    const TriangleSetup& t = pendingSetups_[i];
-    if (t.maxY < band.y || t.minY >= band.y + band.height) continue;
-    rasterizeOne(t, band, fragments);
+// The setups of the pending draws that touch rows [y0, y1] (given in binned_, in submission
+// order), each rasterized inside those rows with its own draw's state.
+void Renderer::rasterizeBand(const std::vector<uint32_t>& setups, int y0, int y1, RasterStats& stats) const {
+  std::optional<FragmentProcessor> fragments;
+  uint32_t current = UINT32_MAX;
+  Rect band;
+  for (const uint32_t i : setups) {
+    const uint32_t d = setupDraw_[i];
+    if (d != current) {
+      const PendingDraw& draw = pending_[d];
+      current = d;
+      band = draw.region;
+      band.y = std::max(y0, draw.region.y);
+      band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
+      // The processor writes to fb_ through its own reference: rasterizing changes the
+      // framebuffer, not the renderer.
+      fragments.emplace(fb_, draw.state, draw.shader, stats, &draw.watch);
+    }
+    if (band.height > 0) rasterizeOne(pendingSetups_[i], band, *fragments);
   }
 }
 
@@ -268,14 +276,31 @@ void Renderer::flush() {
     if (candidates < kParallelThreshold) candidates += candidatePixels(pendingSetups_, d.first, d.count, d.region);
   }
   const int bands = (maxY - minY + kBandRows) / kBandRows;
-  if (!pool_ || bands < 2 || candidates < kParallelThreshold) {
-    for (const PendingDraw& d : pending_) rasterizeBand(d, minY, maxY, stats_);
+  const bool parallel = pool_ && bands >= 2 && candidates >= kParallelThreshold;
+  // Bin: every band gets the setups whose rows (inside their draw's region) meet it, in order.
+  const int binCount = parallel ? bands : 1;
+  if (binned_.size() < size_t(binCount)) binned_.resize(size_t(binCount));
+  for (int b = 0; b < binCount; ++b) binned_[size_t(b)].clear();
+  setupDraw_.resize(pendingSetups_.size());
+  for (size_t d = 0; d < pending_.size(); ++d) {
+    const PendingDraw& draw = pending_[d];
+    for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
+      const TriangleSetup& t = pendingSetups_[i];
+      setupDraw_[i] = uint32_t(d);
+      const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
+      if (bottom > top) continue;
+      const int first = parallel ? (bottom - minY) / kBandRows : 0, last = parallel ? (top - minY) / kBandRows : 0;
+      for (int b = first; b <= last; ++b) binned_[size_t(b)].push_back(uint32_t(i));
+    }
+  }
+  if (!parallel) {
+    rasterizeBand(binned_[0], minY, maxY, stats_);
   } else {
-    // Each band of rows belongs to one task, which replays every draw in submission order.
+    // Each band of rows belongs to one task, which replays its setups in submission order.
     bandStats_.assign(size_t(bands), RasterStats{});
     pool_->run(bands, [&](int b) {
       const int y0 = minY + b * kBandRows, y1 = std::min(maxY, y0 + kBandRows - 1);
-      for (const PendingDraw& d : pending_) rasterizeBand(d, y0, y1, bandStats_[size_t(b)]);
+      rasterizeBand(binned_[size_t(b)], y0, y1, bandStats_[size_t(b)]);
     });
     for (const RasterStats& s : bandStats_) stats_ += s;
   }

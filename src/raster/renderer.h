@@ -90,7 +90,7 @@ class Renderer {
     int minY = 0, maxY = -1;      // the rows its triangles may touch
   };
   friend class DeferredDraws;
-  void rasterizeBand(const PendingDraw& draw, int y0, int y1, RasterStats& stats) const;
+  void rasterizeBand(const std::vector<uint32_t>& setups, int y0, int y1, RasterStats& stats) const;
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 
   Framebuffer& fb_;
@@ -109,6 +109,8 @@ class Renderer {
   std::vector<PendingDraw> pending_;
   std::vector<TriangleSetup> pendingSetups_;
   std::vector<std::deque<ClipVertex>> pendingClipped_;
+  std::vector<uint32_t> setupDraw_;               // the pending draw of each pending setup
+  std::vector<std::vector<uint32_t>> binned_;     // per band of rows: its setups, in order
   int deferDepth_ = 0;
 };
 

@@ -5,9 +5,10 @@
 namespace shadowref {
 
 namespace {
-// How long an idle worker spins before it sleeps: longer than the gap between two draws of a
-// pass, short enough not to hold a core between frames.
-constexpr std::chrono::microseconds kSpinTime{300};
+// How long an idle worker spins before it sleeps: longer than the serial work between two
+// rasterizations (building a pass's volumes, setting up its triangles), so that the worker is
+// there when the bands are handed out; short enough not to hold a core between frames.
+constexpr std::chrono::microseconds kSpinTime{3000};
 }  // namespace
 
 int defaultThreadCount() {
