@@ -122,28 +122,29 @@ inline v4d vmax0(v4d x) { return x < 0.0 ? splat(0.0) : x; }  // std::max(x, 0.0
 // glm's dot of two dvec3: (a.x * b.x + a.y * b.y) + a.z * b.z.
 inline v4d dot3(v4d ax, v4d ay, v4d az, v4d bx, v4d by, v4d bz) { return ax * bx + ay * by + az * bz; }
 
-// The batch form of litColor, four fragments per step: lightContribution's operations in the
-// same order, with both sides of every early return computed and the result selected (a lane the
-// scalar code would have left early adds +0.0, as its zero vector does). pow stays a scalar call
-// per fragment that needs it.
+// lightContribution for a batch, four fragments per step: its operations in the same order, with
+// both sides of every early return computed and the result selected (a lane the scalar code would
+// have left early gets +0.0, as the early return's zero vector). pow stays a scalar call per
+// fragment that needs it.
 struct LightingColumns {
   static constexpr int kBlocks = (kMaxBatch + 3) / 4;
   int count = 0, blocks = 0;
   v4d px[kBlocks], py[kBlocks], pz[kBlocks], nx[kBlocks], ny[kBlocks], nz[kBlocks];
-  v4d cr[kBlocks], cg[kBlocks], cb[kBlocks];
 
-  void load(const FragmentBatch& b, const glm::dvec3& base) {
-    count = b.count;
-    blocks = (count + 3) / 4;
+  // Positions, and normals as fragmentNormal makes them.
+  explicit LightingColumns(const FragmentBatch& b) : count(b.count), blocks((b.count + 3) / 4) {
     const bool back = b.facing == BackFacing;
     for (int q = 0; q < blocks; ++q) {
+      int k[4];
+      for (int lane = 0; lane < 4; ++lane) k[lane] = std::min(4 * q + lane, count - 1);  // padded with a copy
+      auto column = [&](int j) {
+        const double* c = b.varyings[j];
+        return v4d{c[k[0]], c[k[1]], c[k[2]], c[k[3]]};
+      };
       v4d p[3], n[3];
-      for (int lane = 0; lane < 4; ++lane) {
-        const int k = std::min(4 * q + lane, count - 1);  // the last block is padded with a copy
-        for (int j = 0; j < 3; ++j) {
-          p[j][lane] = b.varyings[kVaryingPosition + j][k];
-          n[j][lane] = b.varyings[kVaryingNormal + j][k];
-        }
+      for (int j = 0; j < 3; ++j) {
+        p[j] = column(kVaryingPosition + j);
+        n[j] = column(kVaryingNormal + j);
       }
       const v4d len = vsqrt(dot3(n[0], n[1], n[2], n[0], n[1], n[2]));
       const v4l scale = len > 0.0;
@@ -157,17 +158,18 @@ struct LightingColumns {
       nx[q] = n[0];
       ny[q] = n[1];
       nz[q] = n[2];
-      cr[q] = splat(base.x);
-      cg[q] = splat(base.y);
-      cb[q] = splat(base.z);
     }
   }
 
-  void add(const LightTerms& L, const glm::dvec3& eye) {
-    for (int q = 0; q < blocks; ++q) addBlock(L, eye, q);
+  void contributions(const LightTerms& L, const glm::dvec3& eye, glm::dvec3* out) const {
+    for (int q = 0; q < blocks; ++q) {
+      v4d r, g, b;
+      block(L, eye, q, r, g, b);
+      for (int lane = 0; lane < 4 && 4 * q + lane < count; ++lane) out[4 * q + lane] = {r[lane], g[lane], b[lane]};
+    }
   }
 
-  void addBlock(const LightTerms& L, const glm::dvec3& eye, int q) {
+  void block(const LightTerms& L, const glm::dvec3& eye, int q, v4d& outR, v4d& outG, v4d& outB) const {
     v4d lx, ly, lz, att = splat(1.0);
     v4l lit = v4l{} - 1;
     if (L.directional) {
@@ -214,21 +216,28 @@ struct LightingColumns {
       g += L.specularColor.y * spec;
       b += L.specularColor.z * spec;
     }
-    cr[q] += select(lit, att * r, splat(0.0));
-    cg[q] += select(lit, att * g, splat(0.0));
-    cb[q] += select(lit, att * b, splat(0.0));
+    outR = select(lit, att * r, splat(0.0));
+    outG = select(lit, att * g, splat(0.0));
+    outB = select(lit, att * b, splat(0.0));
   }
 };
 
 }  // namespace
 
+void lightContributions(const FragmentBatch& batch, const LightTerms& light, const glm::dvec3& eye, glm::dvec3* out) {
+  if (batch.count > 0) LightingColumns(batch).contributions(light, eye, out);
+}
+
 void PerPixelLightingShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const {
   if (batch.count == 0) return;
-  LightingColumns c;
-  c.load(batch, base_);
-  for (const LightTerms& light : terms_) c.add(light, eye_);
-  for (int k = 0; k < batch.count; ++k)
-    out[k] = glm::dvec4(c.cr[k / 4][k % 4], c.cg[k / 4][k % 4], c.cb[k / 4][k % 4], 1.0);
+  const LightingColumns columns(batch);
+  glm::dvec3 c[kMaxBatch], light[kMaxBatch];
+  for (int k = 0; k < batch.count; ++k) c[k] = base_;
+  for (const LightTerms& terms : terms_) {
+    columns.contributions(terms, eye_, light);
+    for (int k = 0; k < batch.count; ++k) c[k] += light[k];
+  }
+  for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(c[k], 1.0);
 }
 
 glm::dvec3 gouraudVertexColor(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n) {

@@ -1,5 +1,6 @@
 #include "shadow/shadow_map_renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -33,6 +34,26 @@ class ShadowMappedShader final : public FragmentShader {
   }
 
   int varyingCount() const override { return 6; }
+
+  void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override {
+    if (shadows_.empty()) {
+      for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(ambient_, 1.0);
+      return;
+    }
+    glm::dvec3 c[kMaxBatch], light[kMaxBatch];
+    for (int k = 0; k < batch.count; ++k) c[k] = glm::dvec3(0.0);
+    const double share = 1.0 / double(shadows_.size());
+    for (size_t i = 0; i < shadows_.size(); ++i) {
+      if (inRange_[i]) lightContributions(batch, terms_[i], eye_, light);
+      else std::fill_n(light, batch.count, glm::dvec3(0.0));
+      for (int k = 0; k < batch.count; ++k) {
+        const glm::dvec3 p(batch.varyings[kVaryingPosition][k], batch.varyings[kVaryingPosition + 1][k],
+                           batch.varyings[kVaryingPosition + 2][k]);
+        c[k] += (ambient_ * share + light[k]) * shadows_[i]->factor(p);
+      }
+    }
+    for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(c[k], 1.0);
+  }
 
   glm::dvec4 shade(const FragmentInput& in) const override {
     const double* v = in.varyings;
