@@ -1,0 +1,101 @@
+// Determinism across builds (SPEC.md §1: the same bytes on every machine): a hash of every buffer
+// of a set of small frames, pinned in golden/frame-hashes.txt. CI checks it in the Release build
+// (AVX2 where the machine has it) and in the sanitizer build (built for any x86-64, SSE2), so
+// both vector widths of the span and lighting loops must give the same bytes — and the same as
+// when the hashes were written. After an intended change of the output, scripts/update-goldens.sh
+// rewrites the file (SHADOWREF_UPDATE_GOLDENS=1).
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "scene/scene_loader.h"
+#include "shadow/frame_renderer.h"
+
+using namespace shadowref;
+
+namespace {
+
+const std::string kHashFile = std::string(SHADOWREF_SOURCE_DIR) + "/golden/frame-hashes.txt";
+
+struct HashCase {
+  std::string name, file;
+  std::vector<std::string> overrides;
+};
+
+std::vector<HashCase> hashCases() {
+  return {
+      {"room-zfail", "scenes/room.yaml", {"shadow.method=zfail"}},
+      {"room-zpass-unorm24", "scenes/room.yaml", {"shadow.method=zpass", "image.depth=unorm24"}},
+      {"room-soft", "scenes/room.yaml", {"lights.0.soft.shape=square_y", "lights.0.soft.spacing=0.3"}},
+      {"room-none", "scenes/room.yaml", {"shadow.method=none"}},
+      {"pumpkins-auto", "scenes/pumpkins.yaml", {"shadow.method=auto"}},
+      {"city16-zfail", "scenes/city16.yaml", {"shadow.method=zfail"}},
+      {"outdoor-tsm", "scenes/outdoor.yaml", {"shadow.method=tsm", "shadow.map_size=256"}},
+      {"spot-pcf", "scenes/spot.yaml", {"shadow.method=shadowmap", "shadow.pcf=3", "shadow.map_size=128"}},
+      {"room-cube", "scenes/room.yaml", {"shadow.method=shadowmap", "shadow.map_size=128"}},
+  };
+}
+
+// FNV-1a, 64 bits, over the bytes of every buffer in a fixed order.
+class Fnv {
+ public:
+  template <class T>
+  void add(const std::vector<T>& v) {
+    const auto* p = reinterpret_cast<const unsigned char*>(v.data());
+    for (size_t i = 0; i < v.size() * sizeof(T); ++i) hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
+    hash_ = (hash_ ^ v.size()) * 0x100000001b3ull;
+  }
+  uint64_t value() const { return hash_; }
+
+ private:
+  uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+std::string frameHash(const HashCase& c) {
+  LoadOptions options;
+  options.overrides = c.overrides;
+  options.overrides.push_back("image.width=160");
+  options.overrides.push_back("image.height=128");
+  const Scene scene = loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/" + c.file, options);
+  FrameOptions frame;
+  frame.threads = 2;
+  const FrameResult r = renderFrame(scene, frame);
+  Fnv h;
+  h.add(r.framebuffer.color());
+  h.add(r.framebuffer.depthCodes());
+  h.add(r.framebuffer.stencil());
+  h.add(r.framebuffer.accum());
+  std::ostringstream s;
+  s << std::hex << h.value();
+  return s.str();
+}
+
+std::map<std::string, std::string> readHashes() {
+  std::map<std::string, std::string> out;
+  std::ifstream in(kHashFile);
+  std::string name, hash;
+  while (in >> name >> hash) out[name] = hash;
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("every buffer of the pinned frames hashes as in golden/frame-hashes.txt", "[golden][determinism]") {
+  if (std::getenv("SHADOWREF_UPDATE_GOLDENS")) {
+    std::ofstream out(kHashFile);
+    for (const HashCase& c : hashCases()) out << c.name << " " << frameHash(c) << "\n";
+    SUCCEED("wrote " << kHashFile);
+    return;
+  }
+  const std::map<std::string, std::string> pinned = readHashes();
+  REQUIRE(pinned.size() == hashCases().size());
+  for (const HashCase& c : hashCases()) {
+    INFO(c.name);
+    REQUIRE(pinned.count(c.name) == 1);
+    CHECK(frameHash(c) == pinned.at(c.name));
+  }
+}
