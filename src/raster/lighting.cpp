@@ -105,9 +105,6 @@ namespace {
 
 // Four fragments' worth of one quantity. GCC's vector types: +, -, *, / and comparisons act on
 // all four lanes with IEEE semantics, so a lane holds the bits the scalar code computes.
-// The helpers below take and return vectors; they are inline and internal, so the ABI note GCC
-// gives for 32-byte vectors without AVX concerns no call that crosses a boundary.
-#pragma GCC diagnostic ignored "-Wpsabi"
 using v4d = double __attribute__((vector_size(32)));
 using v4l = int64_t __attribute__((vector_size(32)));  // comparison results: -1 true, 0 false
 
