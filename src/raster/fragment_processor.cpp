@@ -249,6 +249,15 @@ using v4f = float __attribute__((vector_size(16)));
 using v4u = uint32_t __attribute__((vector_size(16)));
 using v4b = uint8_t __attribute__((vector_size(4)));
 
+// The low byte of each lane (one byte shuffle; a converting cast is lowered lane by lane).
+inline v4b lowBytes(v4u x) {
+  using v16b = uint8_t __attribute__((vector_size(16)));
+  v16b bytes;
+  std::memcpy(&bytes, &x, sizeof bytes);
+  constexpr int low = std::endian::native == std::endian::little ? 0 : 3;
+  return __builtin_shufflevector(bytes, bytes, low, 4 + low, 8 + low, 12 + low);
+}
+
 template <CompareFunc F>
 inline v4u passes4(v4u incoming, v4u stored) {  // lanes all ones where the test passes
   if constexpr (F == CompareFunc::Never) return v4u{};
@@ -323,7 +332,7 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
         std::memcpy(&stored, depth + i, sizeof stored);
         const v4u pass = passes4<F>(row.codes4(xl + i), stored);
         fails += ~pass & 1u;
-        const v4b delta = __builtin_convertvector(pass ? passDelta : failDelta, v4b);
+        const v4b delta = lowBytes(pass ? passDelta : failDelta);
         v4b bytes;
         std::memcpy(&bytes, stencil + i, sizeof bytes);
         bytes += delta;
