@@ -211,10 +211,11 @@ int runRender(const RenderArgs& args) {
     for (size_t i = 0; i < frame.shadowMaps.size(); ++i) {
       const DepthTexture& map = frame.shadowMaps[i];
       const std::string png = siblingPath(outputs.front(), "shadowmap-" + frame.shadowMapNames[i]);
-      writeGreyPng(map.depth, map.width, map.height, png, 0.0f, 1.0f);
+      const std::vector<float> depth = map.values();
+      writeGreyPng(depth, map.width, map.height, png, 0.0f, 1.0f);
       Framebuffer holder(map.width, map.height);
       ExrExtras z;
-      z.channels.push_back(NamedChannel::floatChannel("Z", map.depth));
+      z.channels.push_back(NamedChannel::floatChannel("Z", depth));
       std::string exr = png.substr(0, png.size() - 4) + ".exr";
       writeExr(holder, exr, z);
       passFiles.push_back(png);

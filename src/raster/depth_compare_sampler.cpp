@@ -5,6 +5,20 @@
 
 namespace shadowref {
 
+std::vector<float> DepthTexture::values() const {
+  std::vector<float> out(bits.size());
+  for (size_t i = 0; i < bits.size(); ++i) out[i] = std::bit_cast<float>(bits[i]);
+  return out;
+}
+
+DepthTexture DepthTexture::filled(int width, int height, float depth) {
+  DepthTexture t;
+  t.width = width;
+  t.height = height;
+  t.bits.assign(size_t(width) * size_t(height), std::bit_cast<uint32_t>(depth));
+  return t;
+}
+
 namespace {
 int nearestTexel(double coordinate, int size) {
   // GL nearest: floor(s * size), then clamp to edge.

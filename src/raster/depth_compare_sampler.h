@@ -4,6 +4,8 @@
 // comparison gives 1, a failing one the compare-fail value (ARB_shadow_ambient; 002 uses 0.4).
 #pragma once
 
+#include <bit>
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -12,10 +14,19 @@
 
 namespace shadowref {
 
+// A depth map: per texel a depth in [0, 1], row 0 at the bottom. Kept as the bits of the float,
+// which is what a Float32 depth buffer holds: a rendered map becomes a texture without a copy.
 struct DepthTexture {
   int width = 0, height = 0;
-  std::vector<float> depth;  // row 0 at the bottom, values in [0, 1]
-  float at(int x, int y) const { return depth[size_t(y) * size_t(width) + size_t(x)]; }
+  std::vector<uint32_t> bits;
+
+  float at(int x, int y) const { return std::bit_cast<float>(bits[index(x, y)]); }
+  void set(int x, int y, float depth) { bits[index(x, y)] = std::bit_cast<uint32_t>(depth); }
+  std::vector<float> values() const;  // every texel, for dumps and images
+  static DepthTexture filled(int width, int height, float depth);
+
+ private:
+  size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
 };
 
 struct DepthCompareSampler {

@@ -1,8 +1,8 @@
 #include "shadow/light_shadow.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <cstring>
 
 #include "raster/clear.h"
 #include "raster/renderer.h"
@@ -175,13 +175,11 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   stats += renderer.stats();
   DepthTexture tex;
   tex.width = tex.height = size;
-  tex.depth.resize(fb.depthCodes().size());
-  if (fb.depthCodec().format == DepthFormat::Float32) {
-    // The codes are the floats' bits: decode then float() gives them back unchanged.
-    std::memcpy(tex.depth.data(), fb.depthCodes().data(), tex.depth.size() * sizeof(float));
-  } else {
-    for (size_t i = 0; i < tex.depth.size(); ++i) tex.depth[i] = float(fb.depthCodec().decode(fb.depthCodes()[i]));
-  }
+  // Float32 codes are the floats' bits already (decode, then float(), gives them back unchanged):
+  // the buffer becomes the texture. Unorm24 codes are converted in place.
+  tex.bits = std::move(fb.depthCodes());
+  if (fb.depthCodec().format != DepthFormat::Float32)
+    for (uint32_t& texel : tex.bits) texel = std::bit_cast<uint32_t>(float(fb.depthCodec().decode(texel)));
   return tex;
 }
 

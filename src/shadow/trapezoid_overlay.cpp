@@ -14,7 +14,7 @@ glm::dvec2 toTexel(const DepthTexture& map, const glm::dvec2& p) {
 void plot(DepthTexture& map, double x, double y, float value) {
   const double fx = std::floor(x), fy = std::floor(y);
   if (fx < 0.0 || fy < 0.0 || fx >= map.width || fy >= map.height) return;
-  map.depth[size_t(fy) * size_t(map.width) + size_t(fx)] = value;
+  map.set(int(fx), int(fy), value);
 }
 
 // A line sampled at half-texel steps: dense enough to leave no gaps.

@@ -10,12 +10,10 @@ namespace {
 
 // 4x4 texels of depth 0.5, except (1, 2) = 0.2, (2, 3) = 0.1 and (3, 3) = 0.9.
 DepthTexture texture() {
-  DepthTexture t;
-  t.width = t.height = 4;
-  t.depth.assign(16, 0.5f);
-  t.depth[2 * 4 + 1] = 0.2f;
-  t.depth[3 * 4 + 2] = 0.1f;
-  t.depth[3 * 4 + 3] = 0.9f;
+  DepthTexture t = DepthTexture::filled(4, 4, 0.5f);
+  t.set(1, 2, 0.2f);
+  t.set(2, 3, 0.1f);
+  t.set(3, 3, 0.9f);
   return t;
 }
 

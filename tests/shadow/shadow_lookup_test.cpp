@@ -10,12 +10,7 @@ using Catch::Matchers::WithinAbs;
 
 namespace {
 
-DepthTexture uniformTexture(int size, float depth) {
-  DepthTexture t;
-  t.width = t.height = size;
-  t.depth.assign(size_t(size) * size_t(size), depth);
-  return t;
-}
+DepthTexture uniformTexture(int size, float depth) { return DepthTexture::filled(size, size, depth); }
 
 Aabb box(const glm::dvec3& lo, const glm::dvec3& hi) {
   Aabb b;
@@ -58,7 +53,7 @@ TEST_CASE("constant bias moves R towards the light by the bias, in homogeneous f
 TEST_CASE("PCF 3x3 averages nine comparisons of 1 or the fail value", "[shadowmap]") {
   // 4x4 map: the left column holds an occluder at depth 0.2, the rest 0.9.
   DepthTexture map = uniformTexture(4, 0.9f);
-  for (int y = 0; y < 4; ++y) map.depth[size_t(y) * 4] = 0.2f;
+  for (int y = 0; y < 4; ++y) map.set(0, y, 0.2f);
   ShadowLookup lookup;
   lookup.textureMatrix = biasMatrix();
   lookup.sampler.texture = &map;
@@ -100,7 +95,7 @@ TEST_CASE("a directional map over a ground plane: the occluder's footprint is sh
       const double s = (tx + 0.5) / n, t = (ty + 0.5) / n;
       const double x = 4.0 * s - 2.0, z = 4.0 - 8.0 * t;
       const bool occluded = x > 0.0 && x < 1.0 && z > -1.0 && z < 0.0;
-      map.depth[size_t(ty) * n + size_t(tx)] = depthOf({x, occluded ? 1.0 : 0.0, z});
+      map.set(tx, ty, depthOf({x, occluded ? 1.0 : 0.0, z}));
     }
   ShadowLookup lookup;
   lookup.textureMatrix = T;

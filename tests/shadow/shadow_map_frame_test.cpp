@@ -195,7 +195,7 @@ TEST_CASE("shadow map frame: TSM equals standard mapping when the trapezoid is t
   REQUIRE(tsm->trapezoid.fallback);
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) CHECK(tsm->trapezoid.NT[c][r] == Approx(c == r ? 1.0 : 0.0).margin(1e-12));
-  CHECK(tsm->textures[0].depth == shadowOf(standard)->textures[0].depth);
+  CHECK(tsm->textures[0].bits == shadowOf(standard)->textures[0].bits);
   CHECK(sameColour(render(standard).framebuffer, render(trapezoidal).framebuffer));
 }
 

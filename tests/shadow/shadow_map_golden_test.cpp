@@ -62,7 +62,7 @@ ExrExtras mapChannels(const FrameResult& frame) {
   ExrExtras extras;
   for (size_t i = 0; i < frame.shadowMaps.size(); ++i)
     extras.channels.push_back(
-        NamedChannel::floatChannel(i == 0 ? "Z" : "Z." + frame.shadowMapNames[i], frame.shadowMaps[i].depth));
+        NamedChannel::floatChannel(i == 0 ? "Z" : "Z." + frame.shadowMapNames[i], frame.shadowMaps[i].values()));
   return extras;
 }
 
