@@ -262,6 +262,14 @@ void Renderer::rasterizeBand(const std::vector<uint32_t>& setups, int y0, int y1
   }
 }
 
+void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
+  if (pool_) {
+    pool_->run(count, task);
+    return;
+  }
+  for (int i = 0; i < count; ++i) task(i);
+}
+
 void Renderer::flush() {
   if (pending_.empty()) {
     pendingSetups_.clear();

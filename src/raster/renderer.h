@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -53,6 +54,11 @@ class Renderer {
 
   // Rasterizes every draw made since the first DeferredDraws began (DeferredDraws calls it).
   void flush();
+
+  // Runs task(i) for i in [0, count) on the renderer's threads (or this one) and returns when all
+  // are done: for independent work between draws, such as building each caster's volume. The
+  // tasks must not draw.
+  void parallelFor(int count, const std::function<void(int)>& task);
   const RasterStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
 

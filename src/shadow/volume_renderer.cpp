@@ -84,27 +84,37 @@ bool castsFor(const PreparedInstance& p, const Light& light) {
   return p.instance->shadowMesh != nullptr && withinRange(light, p.instance->shadowBounds);
 }
 
-// Step 2: the volumes of every caster into the (cleared) stencil buffer.
+// Step 2: the volumes of every caster into the (cleared) stencil buffer. The volumes are built
+// first, on all threads (each caster's own, independent of the others), then drawn in the
+// casters' order.
 LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Scene& scene, const SceneView& view,
                            std::span<const PreparedInstance> prepared, const Light& light, ShadowMethod method,
-                           VolumeDraw& scratch) {
+                           std::vector<VolumeDraw>& volumes) {
   LightTotals totals;
   const CountingOptions counting{scene.shadow.twoSidedStencil, scene.shadow.wrapOps};
-  // The volumes have no shader and their setups carry their window positions, so the scratch
-  // volume may be rebuilt for the next caster before the draws are rasterized.
-  const DeferredDraws deferred(renderer);
+  std::vector<const PreparedInstance*> casters;
+  std::vector<StencilCounting> how;
   for (const PreparedInstance& p : prepared) {
     if (!castsFor(p, light)) continue;
-    const StencilCounting how = countingFor(method, *p.instance, scene, view, light);
-    scratch.build(p, light, scene.shadow, how == StencilCounting::ZFail);
+    casters.push_back(&p);
+    how.push_back(countingFor(method, *p.instance, scene, view, light));
+  }
+  if (volumes.size() < casters.size()) volumes.resize(casters.size());
+  renderer.parallelFor(int(casters.size()), [&](int i) {
+    volumes[size_t(i)].build(*casters[size_t(i)], light, scene.shadow, how[size_t(i)] == StencilCounting::ZFail);
+  });
+  const DeferredDraws deferred(renderer);
+  for (size_t i = 0; i < casters.size(); ++i) {
+    const PreparedInstance& p = *casters[i];
+    VolumeDraw& volume = volumes[i];
     ++totals.objects;
-    ++(how == StencilCounting::ZFail ? totals.zfail : totals.zpass);
-    if (how == StencilCounting::ZFail && method == ShadowMethod::Auto) totals.zfailObjects.push_back(p.instance->path);
-    totals.volume.silhouetteEdges += scratch.volume.stats.silhouetteEdges;
-    totals.volume.sideTriangles += scratch.volume.stats.sideTriangles;
-    totals.volume.frontCapTriangles += scratch.volume.stats.frontCapTriangles;
-    totals.volume.backCapTriangles += scratch.volume.stats.backCapTriangles;
-    for (const RenderState& state : volumePassStates(base, how, counting)) scratch.drawAll(renderer, state, p.index);
+    ++(how[i] == StencilCounting::ZFail ? totals.zfail : totals.zpass);
+    if (how[i] == StencilCounting::ZFail && method == ShadowMethod::Auto) totals.zfailObjects.push_back(p.instance->path);
+    totals.volume.silhouetteEdges += volume.volume.stats.silhouetteEdges;
+    totals.volume.sideTriangles += volume.volume.stats.sideTriangles;
+    totals.volume.frontCapTriangles += volume.volume.stats.frontCapTriangles;
+    totals.volume.backCapTriangles += volume.volume.stats.backCapTriangles;
+    for (const RenderState& state : volumePassStates(base, how[i], counting)) volume.drawAll(renderer, state, p.index);
   }
   return totals;
 }
@@ -201,7 +211,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
   }
   if (!darken) composite.blend = {true, BlendFactor::One, BlendFactor::One};
 
-  VolumeDraw scratch;
+  std::vector<VolumeDraw> volumes(1);  // one per caster of a light, kept from light to light
   for (size_t i = 0; i < lights.size(); ++i) {
     const Light& light = lights[i];
     const std::string suffix = "L" + std::to_string(i);
@@ -209,7 +219,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
     const RasterStats before = renderer.stats();
     pass("stencil-" + suffix, [&] {
       clearStencil(fb, base, 0);
-      totals = drawVolumePass(renderer, volumeBase, scene, view, prepared, light, method, scratch);
+      totals = drawVolumePass(renderer, volumeBase, scene, view, prepared, light, method, volumes);
     });
     result.notes.push_back(lightNote(i, light, totals, before, renderer.stats()));
     if (options.keepStencil) {
@@ -224,7 +234,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
 
   if (options.volumeView != VolumeViewMode::None) {
     pass(options.volumeView == VolumeViewMode::Overlay ? "volumes-overlay" : "volumes", [&] {
-      drawVolumeView(renderer, base, scene, view, prepared, lights, method, options.volumeView, scratch);
+      drawVolumeView(renderer, base, scene, view, prepared, lights, method, options.volumeView, volumes[0]);
     });
   }
 }
