@@ -214,7 +214,10 @@ void Renderer::draw(const DrawCall& call) {
 }
 
 namespace {
-constexpr int kBandRows = 16;
+// Bands per thread when a pass is rasterized: enough for the threads to even out uneven rows,
+// few enough that a large triangle is not set up again in many bands. At least kMinBandRows rows.
+constexpr int kBandsPerThread = 6;
+constexpr int kMinBandRows = 16;
 // Below this many candidate pixels a draw is not worth waking the other threads for.
 constexpr int64_t kParallelThreshold = 2048;
 
@@ -283,7 +286,9 @@ void Renderer::flush() {
     maxY = std::max(maxY, d.maxY);
     if (candidates < kParallelThreshold) candidates += candidatePixels(pendingSetups_, d.first, d.count, d.region);
   }
-  const int bands = (maxY - minY + kBandRows) / kBandRows;
+  const int threads = pool_ ? pool_->threadCount() : 1;
+  const int bandRows = std::max(kMinBandRows, (maxY - minY + threads * kBandsPerThread) / (threads * kBandsPerThread));
+  const int bands = (maxY - minY + bandRows) / bandRows;
   const bool parallel = pool_ && bands >= 2 && candidates >= kParallelThreshold;
   // Bin: every band gets the setups whose rows (inside their draw's region) meet it, in order.
   const int binCount = parallel ? bands : 1;
@@ -297,7 +302,7 @@ void Renderer::flush() {
       setupDraw_[i] = uint32_t(d);
       const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
       if (bottom > top) continue;
-      const int first = parallel ? (bottom - minY) / kBandRows : 0, last = parallel ? (top - minY) / kBandRows : 0;
+      const int first = parallel ? (bottom - minY) / bandRows : 0, last = parallel ? (top - minY) / bandRows : 0;
       for (int b = first; b <= last; ++b) binned_[size_t(b)].push_back(uint32_t(i));
     }
   }
@@ -307,7 +312,7 @@ void Renderer::flush() {
     // Each band of rows belongs to one task, which replays its setups in submission order.
     bandStats_.assign(size_t(bands), RasterStats{});
     pool_->run(bands, [&](int b) {
-      const int y0 = minY + b * kBandRows, y1 = std::min(maxY, y0 + kBandRows - 1);
+      const int y0 = minY + b * bandRows, y1 = std::min(maxY, y0 + bandRows - 1);
       rasterizeBand(binned_[size_t(b)], y0, y1, bandStats_[size_t(b)]);
     });
     for (const RasterStats& s : bandStats_) stats_ += s;
