@@ -185,7 +185,11 @@ void Renderer::draw(const DrawCall& call) {
   pending.first = pendingSetups_.size();
   for (size_t c = 0; c < chunks; ++c) {
     AssemblyWorkspace& ws = assembly_[c];
-    pendingSetups_.insert(pendingSetups_.end(), ws.setups.begin(), ws.setups.end());
+    // The chunk's setups move as a block (no copy: 27k pumpkin triangles are 8 MB a pass); the
+    // pending list points into it.
+    for (const TriangleSetup& t : ws.setups) pendingSetups_.push_back(&t);
+    pendingBlocks_.push_back(std::move(ws.setups));
+    ws.setups = {};
     stats_.trianglesClipped += ws.stats.trianglesClipped;
     stats_.trianglesCulled += ws.stats.trianglesCulled;
     if (!ws.clippedVertices.empty()) {
@@ -203,8 +207,8 @@ void Renderer::draw(const DrawCall& call) {
     pending.watch = watch_;
     pending.minY = pending.region.y + pending.region.height;
     for (size_t i = pending.first; i < pending.first + pending.count; ++i) {
-      pending.minY = std::min(pending.minY, pendingSetups_[i].minY);
-      pending.maxY = std::max(pending.maxY, pendingSetups_[i].maxY);
+      pending.minY = std::min(pending.minY, pendingSetups_[i]->minY);
+      pending.maxY = std::max(pending.maxY, pendingSetups_[i]->maxY);
     }
     pending.minY = std::max(pending.minY, pending.region.y);
     pending.maxY = std::min(pending.maxY, pending.region.y + pending.region.height - 1);
@@ -221,10 +225,10 @@ constexpr int kMinBandRows = 16;
 // Below this many candidate pixels a draw is not worth waking the other threads for.
 constexpr int64_t kParallelThreshold = 2048;
 
-int64_t candidatePixels(const std::vector<TriangleSetup>& setups, size_t first, size_t count, const Rect& r) {
+int64_t candidatePixels(const std::vector<const TriangleSetup*>& setups, size_t first, size_t count, const Rect& r) {
   int64_t sum = 0;
   for (size_t i = first; i < first + count; ++i) {
-    const TriangleSetup& t = setups[i];
+    const TriangleSetup& t = *setups[i];
     const int64_t w = std::min(t.maxX, r.x + r.width - 1) - std::max(t.minX, r.x) + 1;
     const int64_t h = std::min(t.maxY, r.y + r.height - 1) - std::max(t.minY, r.y) + 1;
     if (w > 0 && h > 0) sum += w * h;
@@ -261,7 +265,7 @@ void Renderer::rasterizeBand(const std::vector<uint32_t>& setups, int y0, int y1
       // framebuffer, not the renderer.
       fragments.emplace(fb_, draw.state, draw.shader, stats, &draw.watch);
     }
-    if (band.height > 0) rasterizeOne(pendingSetups_[i], band, *fragments);
+    if (band.height > 0) rasterizeOne(*pendingSetups_[i], band, *fragments);
   }
 }
 
@@ -276,6 +280,7 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
 void Renderer::flush() {
   if (pending_.empty()) {
     pendingSetups_.clear();
+    pendingBlocks_.clear();
     pendingClipped_.clear();
     return;
   }
@@ -298,7 +303,7 @@ void Renderer::flush() {
   for (size_t d = 0; d < pending_.size(); ++d) {
     const PendingDraw& draw = pending_[d];
     for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
-      const TriangleSetup& t = pendingSetups_[i];
+      const TriangleSetup& t = *pendingSetups_[i];
       setupDraw_[i] = uint32_t(d);
       const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
       if (bottom > top) continue;
@@ -319,6 +324,7 @@ void Renderer::flush() {
   }
   pending_.clear();
   pendingSetups_.clear();
+  pendingBlocks_.clear();
   pendingClipped_.clear();
 }
 

@@ -113,7 +113,8 @@ class Renderer {
   // made for them (WindowVertex::source points there; a deque keeps its elements in place when
   // it is moved).
   std::vector<PendingDraw> pending_;
-  std::vector<TriangleSetup> pendingSetups_;
+  std::vector<const TriangleSetup*> pendingSetups_;
+  std::vector<std::vector<TriangleSetup>> pendingBlocks_;  // the setups, as assembly made them
   std::vector<std::deque<ClipVertex>> pendingClipped_;
   std::vector<uint32_t> setupDraw_;               // the pending draw of each pending setup
   std::vector<std::vector<uint32_t>> binned_;     // per band of rows: its setups, in order
