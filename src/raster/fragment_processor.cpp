@@ -305,48 +305,65 @@ void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& regi
   rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { processSpan(t, y, xl, xr, e); });
 }
 
-// stencilCountChunk for a whole triangle in the default depth format (Float32, no depth clamp):
-// rows straight from the rasterizer, four pixels per step from depth to stencil, with the depth
-// function and the two stencil deltas fixed once per triangle.
+namespace {
+
+// The rows of a triangle in the default depth format (Float32, no depth clamp), depth tested four
+// pixels per step: quad(at, codes, stored, pass) for each four pixels from buffer index `at`,
+// single(at, code, pass) for the last one to three of a row. Counts the fragments and the failed
+// depth tests.
+template <CompareFunc F, class Quad, class Single>
+void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, uint64_t& fragments,
+                   uint64_t& failed, Quad&& quad, Single&& single) {
+  const uint32_t* const depth = fb.depthCodes().data();
+  rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t*) {
+    const size_t at = fb.index(xl, y);
+    const int n = xr - xl + 1;
+    const RowDepth row(t, y);
+    v4u fails{};
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      v4u stored;
+      std::memcpy(&stored, depth + at + size_t(i), sizeof stored);
+      const v4u codes = row.codes4(xl + i);
+      const v4u pass = passes4<F>(codes, stored);
+      fails += ~pass & 1u;
+      quad(at + size_t(i), codes, stored, pass);
+    }
+    uint64_t rowFails = fails[0] + fails[1] + fails[2] + fails[3];
+    for (; i < n; ++i) {
+      const uint32_t code = row.code(xl + i);
+      const bool pass = passes<F>(code, depth[at + size_t(i)]);
+      rowFails += !pass;
+      single(at + size_t(i), code, pass);
+    }
+    fragments += uint64_t(n);
+    failed += rowFails;
+  });
+}
+
+}  // namespace
+
+// stencilCountChunk for a whole triangle in the default depth format: rows straight from the
+// rasterizer, four pixels per step from depth to stencil, with the depth function and the two
+// stencil deltas fixed once per triangle.
 void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region) {
   const StencilFaceState& face = state_.stencil[t.facing];
   uint8_t onPass = 0, onFail = 0;
   wrapDelta(face.dppass, onPass);
   wrapDelta(face.dpfail, onFail);
-  uint8_t* const stencilBase = fb_.stencil().data();
-  const uint32_t* const depthBase = fb_.depthCodes().data();
+  uint8_t* const stencil = fb_.stencil().data();
   uint64_t fragments = 0, failed = 0;
   withCompare(state_.depthFunc, [&](auto f) {
-    constexpr CompareFunc F = decltype(f)::value;
     const v4u passDelta = v4u{} + onPass, failDelta = v4u{} + onFail;
-    rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t*) {
-      const size_t at = fb_.index(xl, y);
-      uint8_t* stencil = stencilBase + at;
-      const uint32_t* depth = depthBase + at;
-      const int n = xr - xl + 1;
-      const RowDepth row(t, y);
-      v4u fails{};
-      int i = 0;
-      for (; i + 4 <= n; i += 4) {
-        v4u stored;
-        std::memcpy(&stored, depth + i, sizeof stored);
-        const v4u pass = passes4<F>(row.codes4(xl + i), stored);
-        fails += ~pass & 1u;
-        const v4b delta = lowBytes(pass ? passDelta : failDelta);
-        v4b bytes;
-        std::memcpy(&bytes, stencil + i, sizeof bytes);
-        bytes += delta;
-        std::memcpy(stencil + i, &bytes, sizeof bytes);
-      }
-      uint64_t rowFails = fails[0] + fails[1] + fails[2] + fails[3];
-      for (; i < n; ++i) {
-        const bool pass = passes<F>(row.code(xl + i), depth[i]);
-        rowFails += !pass;
-        stencil[i] = uint8_t(stencil[i] + (pass ? onPass : onFail));
-      }
-      fragments += uint64_t(n);
-      failed += rowFails;
-    });
+    depthTestRows<decltype(f)::value>(
+        t, region, fb_, fragments, failed,
+        [&](size_t at, v4u, v4u, v4u pass) {
+          v4b bytes;
+          std::memcpy(&bytes, stencil + at, sizeof bytes);
+          bytes += lowBytes(pass ? passDelta : failDelta);
+          std::memcpy(stencil + at, &bytes, sizeof bytes);
+        },
+        [&](size_t at, uint32_t, bool pass) { stencil[at] = uint8_t(stencil[at] + (pass ? onPass : onFail)); });
   });
   stats_.fragments += fragments;
   stats_.depthFailed += failed;
@@ -355,37 +372,20 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
 
 // depthOnlyChunk for a whole triangle in the default depth format, four pixels per step.
 void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region) {
-  uint32_t* const depthBase = fb_.depthCodes().data();
+  uint32_t* const depth = fb_.depthCodes().data();
   uint64_t fragments = 0, failed = 0;
+  const bool write = writesDepth_;
   withCompare(state_.depthFunc, [&](auto f) {
-    constexpr CompareFunc F = decltype(f)::value;
-    rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t*) {
-      uint32_t* depth = depthBase + fb_.index(xl, y);
-      const int n = xr - xl + 1;
-      const RowDepth row(t, y);
-      v4u fails{};
-      int i = 0;
-      for (; i + 4 <= n; i += 4) {
-        v4u stored;
-        std::memcpy(&stored, depth + i, sizeof stored);
-        const v4u codes = row.codes4(xl + i);
-        const v4u pass = passes4<F>(codes, stored);
-        fails += ~pass & 1u;
-        if (writesDepth_) {
+    depthTestRows<decltype(f)::value>(
+        t, region, fb_, fragments, failed,
+        [&](size_t at, v4u codes, v4u stored, v4u pass) {
+          if (!write) return;
           const v4u next = pass ? codes : stored;
-          std::memcpy(depth + i, &next, sizeof next);
-        }
-      }
-      uint64_t rowFails = fails[0] + fails[1] + fails[2] + fails[3];
-      for (; i < n; ++i) {
-        const uint32_t code = row.code(xl + i);
-        const bool pass = passes<F>(code, depth[i]);
-        rowFails += !pass;
-        if (writesDepth_ && pass) depth[i] = code;
-      }
-      fragments += uint64_t(n);
-      failed += rowFails;
-    });
+          std::memcpy(depth + at, &next, sizeof next);
+        },
+        [&](size_t at, uint32_t code, bool pass) {
+          if (write && pass) depth[at] = code;
+        });
   });
   stats_.fragments += fragments;
   stats_.depthFailed += failed;
