@@ -129,17 +129,22 @@ void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_
 
 namespace {
 
-// The depth test with its function fixed at compile time, so the span loops carry no switch.
-template <CompareFunc F>
-inline bool passes(uint32_t incoming, uint32_t stored) {
-  if constexpr (F == CompareFunc::Never) return false;
-  else if constexpr (F == CompareFunc::Less) return incoming < stored;
-  else if constexpr (F == CompareFunc::Equal) return incoming == stored;
-  else if constexpr (F == CompareFunc::LEqual) return incoming <= stored;
-  else if constexpr (F == CompareFunc::Greater) return incoming > stored;
-  else if constexpr (F == CompareFunc::NotEqual) return incoming != stored;
-  else if constexpr (F == CompareFunc::GEqual) return incoming >= stored;
-  else return true;
+// A depth or stencil comparison with its function fixed at compile time, so the span loops carry
+// no switch: a bool for two codes, a lane mask (all ones where it passes) for two vectors of codes.
+template <CompareFunc F, class T>
+inline auto passes(T incoming, T stored) {
+  const auto result = [&] {
+    if constexpr (F == CompareFunc::Never) return incoming != incoming;
+    else if constexpr (F == CompareFunc::Less) return incoming < stored;
+    else if constexpr (F == CompareFunc::Equal) return incoming == stored;
+    else if constexpr (F == CompareFunc::LEqual) return incoming <= stored;
+    else if constexpr (F == CompareFunc::Greater) return incoming > stored;
+    else if constexpr (F == CompareFunc::NotEqual) return incoming != stored;
+    else if constexpr (F == CompareFunc::GEqual) return incoming >= stored;
+    else return incoming == incoming;
+  }();
+  if constexpr (std::is_arithmetic_v<T>) return bool(result);
+  else return (T)result;  // a vector comparison gives signed lanes; same width, same bits
 }
 
 template <class Fn>
@@ -258,17 +263,6 @@ inline v4b lowBytes(v4u x) {
   return __builtin_shufflevector(bytes, bytes, low, 4 + low, 8 + low, 12 + low);
 }
 
-template <CompareFunc F>
-inline v4u passes4(v4u incoming, v4u stored) {  // lanes all ones where the test passes
-  if constexpr (F == CompareFunc::Never) return v4u{};
-  else if constexpr (F == CompareFunc::Less) return incoming < stored;
-  else if constexpr (F == CompareFunc::Equal) return incoming == stored;
-  else if constexpr (F == CompareFunc::LEqual) return incoming <= stored;
-  else if constexpr (F == CompareFunc::Greater) return incoming > stored;
-  else if constexpr (F == CompareFunc::NotEqual) return incoming != stored;
-  else if constexpr (F == CompareFunc::GEqual) return incoming >= stored;
-  else return v4u{} - 1;
-}
 
 // Float32 depth codes of four pixels of a row, as depthCodes computes them.
 struct RowDepth {
@@ -325,7 +319,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
       v4u stored;
       std::memcpy(&stored, depth + at + size_t(i), sizeof stored);
       const v4u codes = row.codes4(xl + i);
-      const v4u pass = passes4<F>(codes, stored);
+      const v4u pass = passes<F>(codes, stored);
       fails += ~pass & 1u;
       quad(at + size_t(i), codes, stored, pass);
     }
@@ -516,13 +510,13 @@ int FragmentProcessor::filterChunk(const StencilFaceState& sface, size_t at, int
       if constexpr (SF != CompareFunc::Always) {
         v4b bytes;
         std::memcpy(&bytes, stencil + i, sizeof bytes);
-        sPass = passes4<SF>(v4u{} + ref, __builtin_convertvector(bytes, v4u) & mask);
+        sPass = passes<SF>(v4u{} + ref, __builtin_convertvector(bytes, v4u) & mask);
       }
       v4u code, stored{};
       std::memcpy(&code, codes + i, sizeof code);
       if constexpr (DF != CompareFunc::Always) {
         std::memcpy(&stored, depth + i, sizeof stored);
-        dPass = passes4<DF>(code, stored);
+        dPass = passes<DF>(code, stored);
       }
       const v4u both = sPass & dPass;
       if (writesDepth_) {
