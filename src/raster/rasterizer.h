@@ -1,7 +1,9 @@
 // Coverage: walks a set-up triangle over a pixel region and hands every covered pixel centre to
-// a sink, with the three edge-function values there (SPEC.md §1).
+// a sink, with the three edge-function values there (SPEC.md §1). Two forms of one decision:
+// rasterizeSpans, row intervals, which the renderer uses; and rasterizeTriangle, pixel by pixel,
+// which the reference path (Renderer::useReferencePath) and the pixel history's tests use.
 //
-// The region is visited in 8x8 blocks. A block is skipped when one edge is negative at all four
+// rasterizeTriangle visits the region in 8x8 blocks. A block is skipped when one edge is negative at all four
 // of its corner samples (edge functions are linear, so then it is negative everywhere inside),
 // and tested pixel by pixel otherwise. Inside a block the edge functions are stepped with integer
 // additions only, so the coverage decision is exact and the same in every block order.
