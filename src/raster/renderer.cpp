@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <exception>
 #include <optional>
 #include <stdexcept>
 
@@ -167,19 +166,12 @@ void Renderer::draw(const DrawCall& call) {
   if (chunks == 1) {
     assembleRange(call, 0, triangleCount, planes, varyingCount, assembly_[0]);
   } else {
-    // An exception (an index out of range) is rethrown here once every chunk has finished.
-    std::vector<std::exception_ptr> errors(chunks);
+    // An index out of range throws; the pool rethrows it here once every chunk has finished.
     pool_->run(int(chunks), [&](int c) {
       const size_t first = size_t(c) * kAssemblyChunk;
-      try {
-        assembleRange(call, first, std::min(triangleCount, first + kAssemblyChunk), planes, varyingCount,
-                      assembly_[size_t(c)]);
-      } catch (...) {
-        errors[size_t(c)] = std::current_exception();
-      }
+      assembleRange(call, first, std::min(triangleCount, first + kAssemblyChunk), planes, varyingCount,
+                    assembly_[size_t(c)]);
     });
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
   }
   PendingDraw pending;
   pending.first = pendingSetups_.size();

@@ -37,7 +37,12 @@ void ThreadPool::drain(uint32_t generation) {
       return;
     if (!ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel)) continue;
     // The claimed task belongs to this run, which cannot end before it is done: task_ is its.
-    (*task_.load(std::memory_order_relaxed))(int(ticket & 0xFFFFFFFFu));
+    try {
+      (*task_.load(std::memory_order_relaxed))(int(ticket & 0xFFFFFFFFu));
+    } catch (...) {
+      std::lock_guard lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+    }
     done_.fetch_add(1, std::memory_order_release);
     ticket = ticket_.load(std::memory_order_acquire);
   }
@@ -71,7 +76,15 @@ void ThreadPool::workerLoop() {
 
 void ThreadPool::run(int count, const std::function<void(int)>& task) {
   if (workers_.empty() || count <= 1) {
-    for (int i = 0; i < count; ++i) task(i);
+    std::exception_ptr error;
+    for (int i = 0; i < count; ++i) {
+      try {
+        task(i);
+      } catch (...) {
+        if (!error) error = std::current_exception();
+      }
+    }
+    if (error) std::rethrow_exception(error);
     return;
   }
   // A worker late from an earlier run finds the ticket of another run and claims nothing; the
@@ -88,6 +101,12 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
   }
   drain(generation);
   while (done_.load(std::memory_order_acquire) < count) std::this_thread::yield();
+  std::exception_ptr error;
+  {
+    std::lock_guard lock(mutex_);
+    std::swap(error, error_);
+  }
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace shadowref

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -31,7 +32,8 @@ class ThreadPool {
   int threadCount() const { return int(workers_.size()) + 1; }
 
   // Runs task(i) for i in [0, count), on the workers and the calling thread; returns when all
-  // are done. Not reentrant: one run at a time, from one thread.
+  // are done, rethrowing the first exception a task threw (the other tasks still run). Not
+  // reentrant: one run at a time, from one thread.
   void run(int count, const std::function<void(int)>& task);
 
  private:
@@ -53,6 +55,7 @@ class ThreadPool {
   std::atomic<int> done_{0};
   std::atomic<const std::function<void(int)>*> task_{nullptr};
   std::atomic<int> count_{0};
+  std::exception_ptr error_;  // the first exception of the current run, under mutex_
 };
 
 // The number of threads "0 = all cores" means.

@@ -1,0 +1,66 @@
+// The thread pool under the rasterizer: every task runs exactly once per run, runs follow each
+// other without a late worker taking a task of the next one, and a task's exception reaches the
+// caller of run() after the other tasks have finished.
+#include <atomic>
+#include <stdexcept>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "raster/renderer.h"
+#include "raster/thread_pool.h"
+#include "support/raster_harness.h"
+
+using namespace shadowref;
+using namespace shadowref::testing;
+
+TEST_CASE("every task of every run runs exactly once, for 1, 2 and 8 threads", "[raster][threads]") {
+  for (int threads : {1, 2, 8}) {
+    ThreadPool pool(threads);
+    for (int run = 0; run < 300; ++run) {
+      const int count = 1 + run % 37;
+      std::vector<std::atomic<int>> hits(static_cast<size_t>(count));
+      pool.run(count, [&](int i) { hits[size_t(i)].fetch_add(1); });
+      int wrong = 0;
+      for (const std::atomic<int>& h : hits) wrong += h.load() != 1;
+      INFO(threads << " threads, run " << run);
+      REQUIRE(wrong == 0);
+    }
+  }
+}
+
+TEST_CASE("a task's exception is rethrown by run() once the other tasks are done", "[raster][threads]") {
+  for (int threads : {1, 2, 8}) {
+    ThreadPool pool(threads);
+    std::atomic<int> ran{0};
+    CHECK_THROWS_AS(pool.run(16,
+                             [&](int i) {
+                               ran.fetch_add(1);
+                               if (i == 5) throw std::runtime_error("task 5");
+                             }),
+                    std::runtime_error);
+    CHECK(ran.load() == 16);
+    // The pool is usable afterwards, and the error does not come back.
+    std::atomic<int> again{0};
+    pool.run(8, [&](int) { again.fetch_add(1); });
+    CHECK(again.load() == 8);
+  }
+}
+
+TEST_CASE("a vertex index out of range is an error with threads too, and nothing is drawn", "[raster][threads]") {
+  Framebuffer fb(64, 64);
+  Renderer renderer(fb, 2);
+  const RenderState s = coverageCountingState(fb);
+  std::vector<ClipVertex> vertices = windowRect(s.viewport, 2, 2, 60, 60);
+  std::vector<uint32_t> indices;
+  for (uint32_t i = 0; i < 600; ++i) indices.insert(indices.end(), {0, 1, 2});  // chunks on both threads
+  indices.push_back(0);
+  indices.push_back(1);
+  indices.push_back(99);  // out of range, in the last chunk
+  DrawCall call;
+  call.state = &s;
+  call.vertices = vertices;
+  call.indices = indices;
+  CHECK_THROWS_AS(renderer.draw(call), std::out_of_range);
+  for (uint8_t v : fb.stencil()) REQUIRE(v == 0);
+}
