@@ -456,13 +456,36 @@ void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n
   double depths[kChunk], b0[kChunk], b1[kChunk], b2[kChunk], inv[kChunk];
   double varyings[kMaxVaryings][kChunk];
   for (int k = 0; k < survived; ++k) {
-    const int i = survivors[k];
-    const int64_t dx = x + i - xl;
-    xs[k] = x + i;
-    depths[k] = fb_.depthCodec().decode(codes[i]);
-    b0[k] = double(e[0] + t.stepX[0] * dx) * t.v[0].invW;
-    b1[k] = double(e[1] + t.stepX[1] * dx) * t.v[1].invW;
-    b2[k] = double(e[2] + t.stepX[2] * dx) * t.v[2].invW;
+    xs[k] = x + survivors[k];
+    depths[k] = fb_.depthCodec().decode(codes[survivors[k]]);
+  }
+  // The weights need double(E) of the exact integer edge values. Where every value in the chunk
+  // is below 2^52 in magnitude, E = E_start + stepX * i is exact in double arithmetic, which
+  // vectorises; otherwise it is formed in 64-bit integers first.
+  int64_t start[3];
+  bool smallValues = true;
+  for (int j = 0; j < 3; ++j) {
+    start[j] = e[j] + t.stepX[j] * (x - xl);
+    const int64_t end = start[j] + t.stepX[j] * (n - 1), limit = int64_t(1) << 52;
+    smallValues = smallValues && start[j] > -limit && start[j] < limit && end > -limit && end < limit;
+  }
+  if (smallValues) {
+    const double e0 = double(start[0]), e1 = double(start[1]), e2 = double(start[2]);
+    const double s0 = double(t.stepX[0]), s1 = double(t.stepX[1]), s2 = double(t.stepX[2]);
+    const double w0 = t.v[0].invW, w1 = t.v[1].invW, w2 = t.v[2].invW;
+    for (int k = 0; k < survived; ++k) {
+      const double i = double(survivors[k]);
+      b0[k] = (e0 + s0 * i) * w0;
+      b1[k] = (e1 + s1 * i) * w1;
+      b2[k] = (e2 + s2 * i) * w2;
+    }
+  } else {
+    for (int k = 0; k < survived; ++k) {
+      const int64_t i = survivors[k];
+      b0[k] = double(start[0] + t.stepX[0] * i) * t.v[0].invW;
+      b1[k] = double(start[1] + t.stepX[1] * i) * t.v[1].invW;
+      b2[k] = double(start[2] + t.stepX[2] * i) * t.v[2].invW;
+    }
   }
   for (int k = 0; k < survived; ++k) inv[k] = 1.0 / (b0[k] + b1[k] + b2[k]);
   FragmentBatch batch;
