@@ -217,36 +217,6 @@ void FragmentProcessor::runSpan(const TriangleSetup& t, int y, int xl, int xr, c
   }
 }
 
-// fragmentDepth and DepthCodec::encode for n pixels of a row: the same operations in the same
-// order, so the same bits (planeDepthAt's sum is split into its row part and its column part).
-// Float32 codes are computed four at a time with GCC vector types — IEEE operations give the same
-// result in a vector lane as in a scalar register; the compiler maps them onto whatever SIMD the
-// target has.
-void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const {
-  const double rowPart = t.dzdy * ((double(y) + 0.5) - t.v[0].fy);
-  const double z0 = t.v[0].z, fx0 = t.v[0].fx, dzdx = t.dzdx, offset = t.depthOffset;
-  if (fb_.depthCodec().format == DepthFormat::Float32 && !state_.depthClamp) {
-    using v4d = double __attribute__((vector_size(32)));
-    using v4f = float __attribute__((vector_size(16)));
-    const v4d lane = {0.5, 1.5, 2.5, 3.5};
-    int i = 0;
-    for (; i + 4 <= n; i += 4) {
-      const v4d cx = double(x + i) + lane;  // exact: small integers plus halves
-      const v4d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
-      const v4d clamped = z > 0.0 ? (1.0 < z ? v4d{} + 1.0 : z) : v4d{};  // encode's clamp, NaN to 0
-      const v4f f = __builtin_convertvector(clamped, v4f);
-      std::memcpy(codes + i, &f, sizeof f);
-    }
-    for (; i < n; ++i) codes[i] = fb_.depthCodec().encode((z0 + (dzdx * ((double(x + i) + 0.5) - fx0) + rowPart)) + offset);
-    return;
-  }
-  for (int i = 0; i < n; ++i) {
-    double z = (z0 + (dzdx * ((double(x + i) + 0.5) - fx0) + rowPart)) + offset;
-    if (state_.depthClamp) z = std::clamp(z, depthLo_, depthHi_);
-    codes[i] = fb_.depthCodec().encode(z);
-  }
-}
-
 namespace {
 
 using v4d = double __attribute__((vector_size(32)));
@@ -263,8 +233,8 @@ inline v4b lowBytes(v4u x) {
   return __builtin_shufflevector(bytes, bytes, low, 4 + low, 8 + low, 12 + low);
 }
 
-
-// Float32 depth codes of four pixels of a row, as depthCodes computes them.
+// The Float32 depth codes of a row (no depth clamp): fragmentDepth and DepthCodec::encode with the
+// same operations in the same order, four pixels at a time or one.
 struct RowDepth {
   double z0, fx0, dzdx, rowPart, offset;
   RowDepth(const TriangleSetup& t, int y)
@@ -288,6 +258,30 @@ struct RowDepth {
 };
 
 }  // namespace
+
+// fragmentDepth and DepthCodec::encode for n pixels of a row: the same operations in the same
+// order, so the same bits (planeDepthAt's sum is split into its row part and its column part).
+// Float32 codes without clamp come four at a time from RowDepth.
+void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const {
+  const double rowPart = t.dzdy * ((double(y) + 0.5) - t.v[0].fy);
+  const double z0 = t.v[0].z, fx0 = t.v[0].fx, dzdx = t.dzdx, offset = t.depthOffset;
+  if (fb_.depthCodec().format == DepthFormat::Float32 && !state_.depthClamp) {
+    const RowDepth row(t, y);
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      const v4u four = row.codes4(x + i);
+      std::memcpy(codes + i, &four, sizeof four);
+    }
+    for (; i < n; ++i) codes[i] = row.code(x + i);
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    double z = (z0 + (dzdx * ((double(x + i) + 0.5) - fx0) + rowPart)) + offset;
+    if (state_.depthClamp) z = std::clamp(z, depthLo_, depthHi_);
+    codes[i] = fb_.depthCodec().encode(z);
+  }
+}
+
 
 void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& region) {
   const bool watched = watch_ && watch_->observer && watch_->x >= t.minX && watch_->x <= t.maxX &&
