@@ -24,7 +24,6 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   depthLo_ = std::min(state.viewport.nearVal, state.viewport.farVal);
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
   spanLoop_ = chooseSpanLoop();
-  float32Rows_ = fb.depthCodec().format == DepthFormat::Float32 && !state.depthClamp && usesDepth_;
   if (writesColor_) constantColor_ = shader->constantColor();
 }
 
@@ -208,12 +207,7 @@ void FragmentProcessor::runSpan(const TriangleSetup& t, int y, int xl, int xr, c
   for (int x = xl; x <= xr; x += kChunk) {
     const int n = std::min(kChunk, xr - x + 1);
     depthCodes(t, y, x, n, codes);
-    const size_t at = fb_.index(x, y);
-    switch (spanLoop_) {
-      case SpanLoop::StencilCount: stencilCountChunk(t, at, n, codes); break;
-      case SpanLoop::DepthOnly: depthOnlyChunk(at, n, codes); break;
-      case SpanLoop::General: generalChunk(t, y, x, n, codes, xl, e); break;
-    }
+    generalChunk(t, y, x, n, codes, xl, e);
   }
 }
 
@@ -233,60 +227,57 @@ inline v4b lowBytes(v4u x) {
   return __builtin_shufflevector(bytes, bytes, low, 4 + low, 8 + low, 12 + low);
 }
 
-// The Float32 depth codes of a row (no depth clamp): fragmentDepth and DepthCodec::encode with the
-// same operations in the same order, four pixels at a time or one.
+// The depth codes of a row: fragmentDepth and DepthCodec::encode with the same operations in the
+// same order (planeDepthAt's sum split into its row part and its column part), four pixels at a
+// time or one. Float32 codes are made in vector lanes; Unorm24's rounding lane by lane.
 struct RowDepth {
   double z0, fx0, dzdx, rowPart, offset;
-  RowDepth(const TriangleSetup& t, int y)
+  const DepthCodec& codec;
+  bool clamp;
+  double lo, hi;  // the depth range, when clamping
+  RowDepth(const TriangleSetup& t, int y, const DepthCodec& depthCodec, bool depthClamp, double depthLo, double depthHi)
       : z0(t.v[0].z), fx0(t.v[0].fx), dzdx(t.dzdx), rowPart(t.dzdy * ((double(y) + 0.5) - t.v[0].fy)),
-        offset(t.depthOffset) {}
+        offset(t.depthOffset), codec(depthCodec), clamp(depthClamp), lo(depthLo), hi(depthHi) {}
   v4u codes4(int x) const {
     const v4d lane = {0.5, 1.5, 2.5, 3.5};
     const v4d cx = double(x) + lane;
-    const v4d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
-    const v4d clamped = z > 0.0 ? (1.0 < z ? v4d{} + 1.0 : z) : v4d{};
-    const v4f f = __builtin_convertvector(clamped, v4f);
+    v4d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
+    if (clamp) z = z < lo ? v4d{} + lo : (hi < z ? v4d{} + hi : z);  // std::clamp
     v4u codes;
-    std::memcpy(&codes, &f, sizeof codes);
+    if (codec.format == DepthFormat::Float32) {
+      const v4d clamped = z > 0.0 ? (1.0 < z ? v4d{} + 1.0 : z) : v4d{};  // encode's clamp, NaN to 0
+      const v4f f = __builtin_convertvector(clamped, v4f);
+      std::memcpy(&codes, &f, sizeof codes);
+    } else {
+      for (int i = 0; i < 4; ++i) codes[i] = codec.encode(z[i]);
+    }
     return codes;
   }
   uint32_t code(int x) const {
-    const double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
-    const double c = z > 0.0 ? std::min(z, 1.0) : 0.0;
-    return std::bit_cast<uint32_t>(float(c));
+    double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
+    if (clamp) z = std::clamp(z, lo, hi);
+    return codec.encode(z);
   }
 };
 
 }  // namespace
 
-// fragmentDepth and DepthCodec::encode for n pixels of a row: the same operations in the same
-// order, so the same bits (planeDepthAt's sum is split into its row part and its column part).
-// Float32 codes without clamp come four at a time from RowDepth.
+// The depth codes of n pixels of a row (RowDepth).
 void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const {
-  const double rowPart = t.dzdy * ((double(y) + 0.5) - t.v[0].fy);
-  const double z0 = t.v[0].z, fx0 = t.v[0].fx, dzdx = t.dzdx, offset = t.depthOffset;
-  if (fb_.depthCodec().format == DepthFormat::Float32 && !state_.depthClamp) {
-    const RowDepth row(t, y);
-    int i = 0;
-    for (; i + 4 <= n; i += 4) {
-      const v4u four = row.codes4(x + i);
-      std::memcpy(codes + i, &four, sizeof four);
-    }
-    for (; i < n; ++i) codes[i] = row.code(x + i);
-    return;
+  const RowDepth row(t, y, fb_.depthCodec(), state_.depthClamp, depthLo_, depthHi_);
+  int i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const v4u four = row.codes4(x + i);
+    std::memcpy(codes + i, &four, sizeof four);
   }
-  for (int i = 0; i < n; ++i) {
-    double z = (z0 + (dzdx * ((double(x + i) + 0.5) - fx0) + rowPart)) + offset;
-    if (state_.depthClamp) z = std::clamp(z, depthLo_, depthHi_);
-    codes[i] = fb_.depthCodec().encode(z);
-  }
+  for (; i < n; ++i) codes[i] = row.code(x + i);
 }
 
 
 void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& region) {
   const bool watched = watch_ && watch_->observer && watch_->x >= t.minX && watch_->x <= t.maxX &&
                        watch_->y >= t.minY && watch_->y <= t.maxY;
-  if (float32Rows_ && !watched) {
+  if (!watched) {
     if (spanLoop_ == SpanLoop::StencilCount) return countTriangle(t, region);
     if (spanLoop_ == SpanLoop::DepthOnly) return depthTriangle(t, region);
   }
@@ -295,23 +286,22 @@ void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& regi
 
 namespace {
 
-// The rows of a triangle in the default depth format (Float32, no depth clamp), depth tested four
-// pixels per step: quad(at, codes, stored, pass) for each four pixels from buffer index `at`,
-// single(at, code, pass) for the last one to three of a row. Counts the fragments and the failed
-// depth tests.
+// The rows of a triangle, depth tested four pixels per step: quad(at, codes, stored, pass) for
+// each four pixels from buffer index `at`, single(at, code, pass) for the last one to three of a
+// row. Counts the fragments and the failed depth tests. F = Always (no depth test) reads no depth.
 template <CompareFunc F, class Quad, class Single>
-void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, uint64_t& fragments,
-                   uint64_t& failed, Quad&& quad, Single&& single) {
+void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
+                   uint64_t& fragments, uint64_t& failed, Quad&& quad, Single&& single) {
   const uint32_t* const depth = fb.depthCodes().data();
   rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t*) {
     const size_t at = fb.index(xl, y);
     const int n = xr - xl + 1;
-    const RowDepth row(t, y);
+    const RowDepth row(t, y, fb.depthCodec(), clamp, lo, hi);
     v4u fails{};
     int i = 0;
     for (; i + 4 <= n; i += 4) {
-      v4u stored;
-      std::memcpy(&stored, depth + at + size_t(i), sizeof stored);
+      v4u stored{};
+      if constexpr (F != CompareFunc::Always) std::memcpy(&stored, depth + at + size_t(i), sizeof stored);
       const v4u codes = row.codes4(xl + i);
       const v4u pass = passes<F>(codes, stored);
       fails += ~pass & 1u;
@@ -320,7 +310,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     uint64_t rowFails = fails[0] + fails[1] + fails[2] + fails[3];
     for (; i < n; ++i) {
       const uint32_t code = row.code(xl + i);
-      const bool pass = passes<F>(code, depth[at + size_t(i)]);
+      const bool pass = passes<F>(code, F == CompareFunc::Always ? code : depth[at + size_t(i)]);
       rowFails += !pass;
       single(at + size_t(i), code, pass);
     }
@@ -331,9 +321,9 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
 
 }  // namespace
 
-// stencilCountChunk for a whole triangle in the default depth format: rows straight from the
-// rasterizer, four pixels per step from depth to stencil, with the depth function and the two
-// stencil deltas fixed once per triangle.
+// Shadow-volume counting for a whole triangle: the stencil test always passes, so each fragment
+// adds the byte of its outcome (depth pass or fail) for its facing, modulo 256 — rows straight from
+// the rasterizer, four pixels per step, the depth function and the two deltas fixed per triangle.
 void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region) {
   const StencilFaceState& face = state_.stencil[t.facing];
   uint8_t onPass = 0, onFail = 0;
@@ -341,10 +331,10 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   wrapDelta(face.dpfail, onFail);
   uint8_t* const stencil = fb_.stencil().data();
   uint64_t fragments = 0, failed = 0;
-  withCompare(state_.depthFunc, [&](auto f) {
+  withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
     const v4u passDelta = v4u{} + onPass, failDelta = v4u{} + onFail;
     depthTestRows<decltype(f)::value>(
-        t, region, fb_, fragments, failed,
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [&](size_t at, v4u, v4u, v4u pass) {
           v4b bytes;
           std::memcpy(&bytes, stencil + at, sizeof bytes);
@@ -358,14 +348,15 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   stats_.stencilWrites += (onPass != 0 ? fragments - failed : 0) + (onFail != 0 ? failed : 0);
 }
 
-// depthOnlyChunk for a whole triangle in the default depth format, four pixels per step.
+// Depth (and nothing else) for a whole triangle: the shadow maps' pass, four pixels per step. The
+// store is unconditional (the old value where the test fails); the pixels are this thread's.
 void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region) {
   uint32_t* const depth = fb_.depthCodes().data();
   uint64_t fragments = 0, failed = 0;
   const bool write = writesDepth_;
-  withCompare(state_.depthFunc, [&](auto f) {
+  withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
     depthTestRows<decltype(f)::value>(
-        t, region, fb_, fragments, failed,
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [&](size_t at, v4u codes, v4u stored, v4u pass) {
           if (!write) return;
           const v4u next = pass ? codes : stored;
@@ -377,57 +368,6 @@ void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region
   });
   stats_.fragments += fragments;
   stats_.depthFailed += failed;
-}
-
-// Shadow-volume counting: the stencil test always passes, so each fragment adds the byte of its
-// outcome (depth pass or fail) for its facing, modulo 256.
-void FragmentProcessor::stencilCountChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes) {
-  const StencilFaceState& face = state_.stencil[t.facing];
-  uint8_t onPass = 0, onFail = 0;
-  wrapDelta(face.dppass, onPass);
-  wrapDelta(face.dpfail, onFail);
-  uint8_t* stencil = fb_.stencil().data() + at;
-  int failed = 0;
-  if (!usesDepth_) {
-    for (int i = 0; i < n; ++i) stencil[i] = uint8_t(stencil[i] + onPass);
-  } else {
-    const uint32_t* depth = fb_.depthCodes().data() + at;
-    withCompare(state_.depthFunc, [&failed, n, depth, codes, stencil, onPass, onFail](auto f) {
-      int fails = 0;
-      for (int i = 0; i < n; ++i) {
-        const bool pass = passes<decltype(f)::value>(codes[i], depth[i]);
-        fails += !pass;
-        stencil[i] = uint8_t(stencil[i] + (pass ? onPass : onFail));
-      }
-      failed = fails;
-    });
-  }
-  stats_.depthFailed += uint64_t(failed);
-  stats_.stencilWrites += uint64_t(onPass != 0 ? n - failed : 0) + uint64_t(onFail != 0 ? failed : 0);
-}
-
-// Depth (and nothing else): the shadow maps' pass. The store is unconditional (the old value
-// where the test fails), which lets the compiler vectorise the loop; the pixels are this thread's.
-void FragmentProcessor::depthOnlyChunk(size_t at, int n, const uint32_t* codes) {
-  if (!usesDepth_) return;
-  uint32_t* depth = fb_.depthCodes().data() + at;
-  int failed = 0;
-  // Everything the loops read is captured by value: a store through `depth` could otherwise
-  // change n for all the compiler knows, and the loop would not be vectorised.
-  withCompare(state_.depthFunc, [&failed, n, depth, codes, write = writesDepth_](auto f) {
-    int fails = 0;
-    if (write) {
-      for (int i = 0; i < n; ++i) {
-        const bool pass = passes<decltype(f)::value>(codes[i], depth[i]);
-        fails += !pass;
-        depth[i] = pass ? codes[i] : depth[i];
-      }
-    } else {
-      for (int i = 0; i < n; ++i) fails += !passes<decltype(f)::value>(codes[i], depth[i]);
-    }
-    failed = fails;
-  });
-  stats_.depthFailed += uint64_t(failed);
 }
 
 // processImpl<false> for a chunk: every test and write per fragment in GL order; the fragments

@@ -3,13 +3,14 @@
 // only for fragments that survive the stencil and depth tests and only when colour is written at
 // all, so stencil-only passes (shadow volumes) never shade.
 //
-// The rasterizer hands over a row span at a time. A span runs in chunks: first the depth codes of
-// the whole chunk (the same formula per pixel as planeDepthAt, in a loop the compiler vectorises),
-// then one of three loops chosen once per draw from the state — stencil counting (volume passes:
-// no colour, no depth write, stencil ALWAYS with KEEP/INCR_WRAP/DECR_WRAP), depth only (shadow
-// maps), or the general loop, which shades the chunk's surviving fragments after their tests.
-// Each pixel is touched once per triangle, so the order inside a span changes no byte. The watched
-// pixel (pixel history) always takes the one-fragment path, which records every step.
+// Triangles are processed in one of three ways chosen once per draw from the state. Stencil
+// counting (volume passes: no colour, no depth write, stencil ALWAYS with KEEP / INCR_WRAP /
+// DECR_WRAP) and depth only (shadow maps) walk each triangle's rows straight to the buffers, four
+// pixels per step. Everything else goes row span by row span in chunks: the depth codes of the
+// chunk first, then the tests, then the surviving fragments shaded together. Each pixel is touched
+// once per triangle, so the order inside a row changes no byte. The watched pixel (pixel history)
+// always takes the one-fragment path, which records every step; the rest of its triangle takes
+// the chunked path.
 #pragma once
 
 #include "raster/fragment_observer.h"
@@ -56,8 +57,6 @@ class FragmentProcessor {
   void depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const;
   void countTriangle(const TriangleSetup& t, const Rect& region);
   void depthTriangle(const TriangleSetup& t, const Rect& region);
-  void stencilCountChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes);
-  void depthOnlyChunk(size_t at, int n, const uint32_t* codes);
   void generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl, const int64_t e[3]);
   int testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors);
   int filterChunk(const StencilFaceState& face, size_t at, int n, const uint32_t* codes, int* survivors);
@@ -79,7 +78,6 @@ class FragmentProcessor {
   int varyingCount_;
   double depthLo_, depthHi_;
   SpanLoop spanLoop_;
-  bool float32Rows_;  // depth tested in Float32 without clamp: counting and depth-only triangles are fused
   const glm::dvec4* constantColor_ = nullptr;  // the shader's colour when it has only one
 };
 
