@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <type_traits>
 
 namespace shadowref {
 
@@ -49,8 +51,79 @@ double DepthCompareSampler::compareTexel(int x, int y, double r) const {
 }
 
 double DepthCompareSampler::sample(const glm::dvec4& strq) const {
-  const double s = strq.x / strq.w, t = strq.y / strq.w, r = strq.z / strq.w;
+  return sampleDivided(strq.x / strq.w, strq.y / strq.w, strq.z / strq.w);
+}
+
+double DepthCompareSampler::sampleDivided(double s, double t, double r) const {
   return compareTexel(nearestTexel(s, texture->width), nearestTexel(t, texture->height), r);
+}
+
+namespace {
+
+using v4d = double __attribute__((vector_size(32)));
+using v4f = float __attribute__((vector_size(16)));
+using v4i = int32_t __attribute__((vector_size(16)));
+using v4l = int64_t __attribute__((vector_size(32)));
+
+// nearestTexel for four coordinates: floor, NaN and negatives to 0, at most size - 1. The
+// results are whole numbers in [0, size - 1], so the conversion to int is exact.
+v4i nearestTexels(v4d coordinate, int size) {
+  v4d t = coordinate * double(size);
+  for (int lane = 0; lane < 4; ++lane) t[lane] = std::floor(t[lane]);
+  const v4d last = v4d{} + double(size - 1);
+  const v4d clamped = t >= 0.0 ? (last < t ? last : t) : v4d{};
+  return __builtin_convertvector(clamped, v4i);
+}
+
+// compareTexel's comparison with the function fixed, as lane masks (all ones where it passes).
+template <CompareFunc F>
+v4l compare(v4f r, v4f d) {
+  using v4m = int32_t __attribute__((vector_size(16)));
+  v4m m;
+  if constexpr (F == CompareFunc::Never) m = v4m{};
+  else if constexpr (F == CompareFunc::Less) m = r < d;
+  else if constexpr (F == CompareFunc::Equal) m = r == d;
+  else if constexpr (F == CompareFunc::LEqual) m = r <= d;
+  else if constexpr (F == CompareFunc::Greater) m = r > d;
+  else if constexpr (F == CompareFunc::NotEqual) m = r != d;
+  else if constexpr (F == CompareFunc::GEqual) m = r >= d;
+  else m = v4m{} - 1;
+  return __builtin_convertvector(m, v4l);
+}
+
+}  // namespace
+
+void DepthCompareSampler::sampleDivided(const double* s, const double* t, const double* r, int count, double* out) const {
+  auto run = [&](auto f) {
+    constexpr CompareFunc F = decltype(f)::value;
+    int k = 0;
+    for (; k + 4 <= count; k += 4) {
+      v4d sv, tv, rv;
+      for (int lane = 0; lane < 4; ++lane) {
+        sv[lane] = s[k + lane];
+        tv[lane] = t[k + lane];
+        rv[lane] = r[k + lane];
+      }
+      const v4i x = nearestTexels(sv, texture->width), y = nearestTexels(tv, texture->height);
+      // r clamped to [0, 1] as std::clamp does it (NaN passes through), then compared in float.
+      const v4f rf = __builtin_convertvector(rv < 0.0 ? v4d{} : (1.0 < rv ? v4d{} + 1.0 : rv), v4f);
+      v4f d;
+      for (int lane = 0; lane < 4; ++lane) d[lane] = texture->at(x[lane], y[lane]);
+      const v4d result = compare<F>(rf, d) ? v4d{} + 1.0 : v4d{} + failValue;
+      for (int lane = 0; lane < 4; ++lane) out[k + lane] = result[lane];
+    }
+    for (; k < count; ++k) out[k] = sampleDivided(s[k], t[k], r[k]);
+  };
+  switch (func) {
+    case CompareFunc::Never: run(std::integral_constant<CompareFunc, CompareFunc::Never>{}); break;
+    case CompareFunc::Less: run(std::integral_constant<CompareFunc, CompareFunc::Less>{}); break;
+    case CompareFunc::Equal: run(std::integral_constant<CompareFunc, CompareFunc::Equal>{}); break;
+    case CompareFunc::LEqual: run(std::integral_constant<CompareFunc, CompareFunc::LEqual>{}); break;
+    case CompareFunc::Greater: run(std::integral_constant<CompareFunc, CompareFunc::Greater>{}); break;
+    case CompareFunc::NotEqual: run(std::integral_constant<CompareFunc, CompareFunc::NotEqual>{}); break;
+    case CompareFunc::GEqual: run(std::integral_constant<CompareFunc, CompareFunc::GEqual>{}); break;
+    case CompareFunc::Always: run(std::integral_constant<CompareFunc, CompareFunc::Always>{}); break;
+  }
 }
 
 double DepthCompareSampler::samplePcf(const glm::dvec4& strq, int k) const {

@@ -36,6 +36,10 @@ struct DepthCompareSampler {
 
   // Nearest texel, clamp to edge; returns 1 when (r/q func D) holds, otherwise failValue.
   double sample(const glm::dvec4& strq) const;
+  // sample() after its division: the texture coordinates s/q, t/q and the depth r/q.
+  double sampleDivided(double s, double t, double r) const;
+  // sampleDivided for `count` points, into out[k]: the same bits, four points at a time.
+  void sampleDivided(const double* s, const double* t, const double* r, int count, double* out) const;
   // k x k percentage-closer filtering around the nearest texel (k odd): the mean of the k^2
   // comparisons, each 1 or failValue.
   double samplePcf(const glm::dvec4& strq, int k) const;

@@ -115,6 +115,17 @@ double LightShadow::factor(const glm::dvec3& p) const {
   return lookup.factor(p);
 }
 
+void LightShadow::factors(const double* x, const double* y, const double* z, int count, double* out) const {
+  if (cube) {
+    for (int k = 0; k < count; ++k) out[k] = cubeLookup.factor({x[k], y[k], z[k]});
+    return;
+  }
+  lookup.factors(x, y, z, count, out);
+  if (!trapezoidal) return;
+  for (int k = 0; k < count; ++k)
+    if (!((views[0].projection * (views[0].view * glm::dvec4(x[k], y[k], z[k], 1.0))).w > 0.0)) out[k] = 1.0;
+}
+
 Aabb sceneBounds(const std::vector<Instance>& instances) {
   Aabb box;
   for (const Instance& inst : instances) {

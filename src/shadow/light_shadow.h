@@ -45,6 +45,8 @@ struct LightShadow {
   // light (w ≤ 0 in its unwarped clip space) 1, as ShadowLookup does for a standard map: N_T's q
   // can be positive there.
   double factor(const glm::dvec3& worldPosition) const;
+  // factor() of `count` points given as coordinate columns, into out[k] (ShadowLookup::factors).
+  void factors(const double* x, const double* y, const double* z, int count, double* out) const;
   int mapCount() const { return cube ? 6 : 1; }
 };
 

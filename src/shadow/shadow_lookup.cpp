@@ -16,6 +16,47 @@ double ShadowLookup::factor(const glm::dvec3& worldPosition) const {
   return pcf > 1 ? sampler.samplePcf(strq, pcf) : sampler.sample(strq);
 }
 
+namespace {
+// Four points' worth of one quantity (GCC vector types: IEEE operations lane by lane, so a lane
+// holds the bits the scalar code computes).
+using v4d = double __attribute__((vector_size(32)));
+constexpr int kMaxPoints = 64;  // a fragment batch (kMaxBatch)
+}  // namespace
+
+void ShadowLookup::factors(const double* x, const double* y, const double* z, int count, double* out) const {
+  int k = 0;
+  if (pcf <= 1 && count <= kMaxPoints) {
+    // The points behind a perspective light (q <= 0) are sampled too (at meaningless
+    // coordinates, clamped to the map) and then given 1.
+    double divided[3][kMaxPoints];
+    bool behind[kMaxPoints];
+    const glm::dmat4& T = textureMatrix;
+    for (; k + 4 <= count; k += 4) {
+      v4d px, py, pz;
+      for (int lane = 0; lane < 4; ++lane) {
+        px[lane] = x[k + lane];
+        py[lane] = y[k + lane];
+        pz[lane] = z[k + lane];
+      }
+      // shadowCoordinates: glm's T * (p, 1) sums (c0·x + c1·y) + (c2·z + c3·1), row by row.
+      auto row = [&](int i) { return (T[0][i] * px + T[1][i] * py) + (T[2][i] * pz + T[3][i] * 1.0); };
+      const v4d s = row(0), t = row(1), q = row(3);
+      const v4d r = row(2) - constantBias * q;  // withConstantBias
+      const v4d sq = s / q, tq = t / q, rq = r / q;
+      for (int lane = 0; lane < 4; ++lane) {
+        divided[0][k + lane] = sq[lane];
+        divided[1][k + lane] = tq[lane];
+        divided[2][k + lane] = rq[lane];
+        behind[k + lane] = !(q[lane] > 0.0);
+      }
+    }
+    if (k > 0) sampler.sampleDivided(divided[0], divided[1], divided[2], k, out);
+    for (int i = 0; i < k; ++i)
+      if (behind[i]) out[i] = 1.0;
+  }
+  for (; k < count; ++k) out[k] = factor({x[k], y[k], z[k]});
+}
+
 double CubeShadowLookup::factor(const glm::dvec3& worldPosition) const {
   const CubeFace face = cubeFaceFor(worldPosition - lightPosition);
   return faces[size_t(face)].factor(worldPosition);

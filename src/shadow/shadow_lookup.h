@@ -34,6 +34,9 @@ struct ShadowLookup {
   // (q ≤ 0) the projection is meaningless; such points lie outside a spot cone, so they are not
   // shadowed by the map (1): the spot's own cone term leaves them dark.
   double factor(const glm::dvec3& worldPosition) const;
+  // factor() of `count` points given as coordinate columns (x[k], y[k], z[k]), into out[k]: the
+  // same bits, the texture matrix and the division four points at a time.
+  void factors(const double* x, const double* y, const double* z, int count, double* out) const;
 };
 
 // A point light's six cube-face maps (light_view.h, pointLightCubeViews): the face is chosen by

@@ -41,16 +41,15 @@ class ShadowMappedShader final : public FragmentShader {
       return;
     }
     glm::dvec3 c[kMaxBatch], light[kMaxBatch];
+    double factor[kMaxBatch];
     for (int k = 0; k < batch.count; ++k) c[k] = glm::dvec3(0.0);
     const double share = 1.0 / double(shadows_.size());
     for (size_t i = 0; i < shadows_.size(); ++i) {
       if (inRange_[i]) lightContributions(batch, terms_[i], eye_, light);
       else std::fill_n(light, batch.count, glm::dvec3(0.0));
-      for (int k = 0; k < batch.count; ++k) {
-        const glm::dvec3 p(batch.varyings[kVaryingPosition][k], batch.varyings[kVaryingPosition + 1][k],
-                           batch.varyings[kVaryingPosition + 2][k]);
-        c[k] += (ambient_ * share + light[k]) * shadows_[i]->factor(p);
-      }
+      shadows_[i]->factors(batch.varyings[kVaryingPosition], batch.varyings[kVaryingPosition + 1],
+                           batch.varyings[kVaryingPosition + 2], batch.count, factor);
+      for (int k = 0; k < batch.count; ++k) c[k] += (ambient_ * share + light[k]) * factor[k];
     }
     for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(c[k], 1.0);
   }

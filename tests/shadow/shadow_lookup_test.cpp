@@ -1,4 +1,6 @@
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include <catch2/catch.hpp>
 
@@ -123,4 +125,46 @@ TEST_CASE("cube shadow lookup uses the face the direction from the light selects
   CHECK(cube.factor({2.0, 0.3, -0.5}) == 1.0);  // +x
   CHECK(cube.factor({0.3, -2.0, 0.5}) == 1.0);  // -y
   CHECK(cube.factor({-1.0, 0.5, 3.0}) == 1.0);  // +z
+}
+
+TEST_CASE("factors of a batch of points are factor's bits, point by point", "[shadowmap]") {
+  // A random 16x16 map under a spot light's perspective T (q <= 0 behind it), with and without a
+  // constant bias, every compare function, points inside and far outside the map (clamped).
+  DepthTexture map = uniformTexture(16, 0.5f);
+  uint32_t seed = 12345;
+  auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return double(seed >> 8) / double(1u << 24);
+  };
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) map.set(x, y, float(next()));
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0.3, 4.0, -0.2};
+  spot.direction = {0.1, -1.0, 0.05};
+  ShadowLookup lookup;
+  lookup.textureMatrix = textureMatrix(spotLightView(spot, box({-2.0, 0.0, -2.0}, {2.0, 1.0, 2.0})));
+  lookup.sampler.texture = &map;
+  constexpr int kCount = 61;  // not a multiple of four: the scalar tail too
+  double x[kCount], y[kCount], z[kCount], out[kCount];
+  for (int k = 0; k < kCount; ++k) {
+    x[k] = 8.0 * next() - 4.0;
+    y[k] = 6.0 * next() - 1.0;  // some above the light: q <= 0
+    z[k] = 8.0 * next() - 4.0;
+  }
+  for (double bias : {0.0, 0.003}) {
+    for (int f = 0; f < 8; ++f) {
+      lookup.constantBias = bias;
+      lookup.sampler.func = CompareFunc(f);
+      lookup.factors(x, y, z, kCount, out);
+      int lit = 0, shadowed = 0;
+      for (int k = 0; k < kCount; ++k) {
+        const double expected = lookup.factor({x[k], y[k], z[k]});
+        CHECK(std::bit_cast<uint64_t>(out[k]) == std::bit_cast<uint64_t>(expected));
+        lit += expected == 1.0;
+        shadowed += expected == 0.4;
+      }
+      if (lookup.sampler.func == CompareFunc::LEqual) CHECK((lit > 5 && shadowed > 5));  // both outcomes occur
+    }
+  }
 }
