@@ -217,6 +217,9 @@ using v4d = double __attribute__((vector_size(32)));
 using v4f = float __attribute__((vector_size(16)));
 using v4u = uint32_t __attribute__((vector_size(16)));
 using v4b = uint8_t __attribute__((vector_size(4)));
+using v8f = float __attribute__((vector_size(32)));
+using v8u = uint32_t __attribute__((vector_size(32)));
+using v8b = uint8_t __attribute__((vector_size(8)));
 
 // The low byte of each lane (one byte shuffle; a converting cast is lowered lane by lane).
 inline v4b lowBytes(v4u x) {
@@ -226,6 +229,17 @@ inline v4b lowBytes(v4u x) {
   constexpr int low = std::endian::native == std::endian::little ? 0 : 3;
   return __builtin_shufflevector(bytes, bytes, low, 4 + low, 8 + low, 12 + low);
 }
+inline v8b lowBytes(v8u x) {
+  using v32b = uint8_t __attribute__((vector_size(32)));
+  v32b bytes;
+  std::memcpy(&bytes, &x, sizeof bytes);
+  constexpr int low = std::endian::native == std::endian::little ? 0 : 3;
+  return __builtin_shufflevector(bytes, bytes, low, 4 + low, 8 + low, 12 + low, 16 + low, 20 + low, 24 + low, 28 + low);
+}
+
+// The byte vector of as many lanes as a vector of codes: the stencil bytes of those pixels.
+template <class Codes>
+using BytesOf = std::conditional_t<sizeof(Codes) == sizeof(v8u), v8b, v4b>;
 
 // The depth codes of a row: fragmentDepth and DepthCodec::encode with the same operations in the
 // same order (planeDepthAt's sum split into its row part and its column part), four pixels at a
@@ -240,18 +254,27 @@ struct RowDepth {
         offset(t.depthOffset), codec(depthCodec), clamp(depthClamp), lo(depthLo), hi(depthHi) {}
   v4u codes4(int x) const {
     const v4d lane = {0.5, 1.5, 2.5, 3.5};
-    const v4d cx = double(x) + lane;
+    return codes4(double(x) + lane);
+  }
+  // The codes of the four pixels whose centres' x are the lanes of cx.
+  v4u codes4(v4d cx) const {
     v4d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
     if (clamp) z = z < lo ? v4d{} + lo : (hi < z ? v4d{} + hi : z);  // std::clamp
-    v4u codes;
+    v4u out;
     if (codec.format == DepthFormat::Float32) {
       const v4d clamped = z > 0.0 ? (1.0 < z ? v4d{} + 1.0 : z) : v4d{};  // encode's clamp, NaN to 0
       const v4f f = __builtin_convertvector(clamped, v4f);
-      std::memcpy(&codes, &f, sizeof codes);
+      std::memcpy(&out, &f, sizeof out);
     } else {
-      for (int i = 0; i < 4; ++i) codes[i] = codec.encode(z[i]);
+      for (int i = 0; i < 4; ++i) out[i] = codec.encode(z[i]);
     }
-    return codes;
+    return out;
+  }
+  // Eight pixels from the centre cx[0]: two halves of four (vectors of eight doubles are
+  // lowered lane by lane by GCC 12 for AVX2).
+  v8u codes8(v4d cx) const {
+    const v4u a = codes4(cx), b = codes4(cx + 4.0);
+    return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
   }
   uint32_t code(int x) const {
     double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
@@ -286,44 +309,59 @@ void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& regi
 
 namespace {
 
-// The rows of a triangle, depth tested four pixels per step: quad(at, codes, stored, pass) for
-// each four pixels from buffer index `at`, single(at, code, pass) for the last one to three of a
-// row. Counts the fragments and the failed depth tests. F = Always (no depth test) reads no depth.
-template <CompareFunc F, class Quad, class Single>
+// The rows of a triangle, depth tested eight pixels per step, then four, then one by one:
+// block(at, codes, stored, pass) for each eight or four pixels from buffer index `at` (vectors of
+// codes: v8u or v4u), single(at, code, pass) for the last one to three of a row. Counts the
+// fragments and the failed depth tests. F = Always (no depth test) reads no depth.
+template <CompareFunc F, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
-                   uint64_t& fragments, uint64_t& failed, Quad&& quad, Single&& single) {
+                   uint64_t& fragments, uint64_t& failed, Block&& block, Single&& single) {
   const uint32_t* const depth = fb.depthCodes().data();
-  rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t*) {
-    const size_t at = fb.index(xl, y);
+  const int width = fb.width();
+  uint64_t rowsFragments = 0, rowsFailed = 0;  // locals: the loops keep them in registers
+  rasterizeRowSpans(t, region, [&, depth, width](int y, int xl, int xr) {
+    const size_t at = size_t(y) * size_t(width) + size_t(xl);
     const int n = xr - xl + 1;
     const RowDepth row(t, y, fb.depthCodec(), clamp, lo, hi);
-    v4u fails{};
-    int i = 0;
-    for (; i + 4 <= n; i += 4) {
-      v4u stored{};
+    auto step = [&](auto codes, v4d cx, int i, auto& fails) {
+      using Codes = decltype(codes);
+      Codes stored{};
       if constexpr (F != CompareFunc::Always) std::memcpy(&stored, depth + at + size_t(i), sizeof stored);
-      const v4u codes = row.codes4(xl + i);
-      const v4u pass = passes<F>(codes, stored);
+      if constexpr (sizeof(Codes) == sizeof(v8u)) codes = row.codes8(cx);
+      else codes = row.codes4(cx);
+      const Codes pass = passes<F>(codes, stored);
       fails += ~pass & 1u;
-      quad(at + size_t(i), codes, stored, pass);
+      block(at + size_t(i), codes, stored, pass);
+    };
+    int i = 0;
+    v8u fails8{};
+    v4d cx = double(xl) + v4d{0.5, 1.5, 2.5, 3.5};  // exact: whole numbers + 0.5
+    for (; i + 8 <= n; i += 8, cx += 8.0) step(v8u{}, cx, i, fails8);
+    v4u fails4{};
+    if (i + 4 <= n) {
+      step(v4u{}, cx, i, fails4);
+      i += 4;
     }
-    uint64_t rowFails = fails[0] + fails[1] + fails[2] + fails[3];
+    uint64_t rowFails = fails4[0] + fails4[1] + fails4[2] + fails4[3];
+    for (int lane = 0; lane < 8; ++lane) rowFails += fails8[lane];
     for (; i < n; ++i) {
       const uint32_t code = row.code(xl + i);
       const bool pass = passes<F>(code, F == CompareFunc::Always ? code : depth[at + size_t(i)]);
       rowFails += !pass;
       single(at + size_t(i), code, pass);
     }
-    fragments += uint64_t(n);
-    failed += rowFails;
+    rowsFragments += uint64_t(n);
+    rowsFailed += rowFails;
   });
+  fragments += rowsFragments;
+  failed += rowsFailed;
 }
 
 }  // namespace
 
 // Shadow-volume counting for a whole triangle: the stencil test always passes, so each fragment
 // adds the byte of its outcome (depth pass or fail) for its facing, modulo 256 — rows straight from
-// the rasterizer, four pixels per step, the depth function and the two deltas fixed per triangle.
+// the rasterizer, eight pixels per step, the depth function and the two deltas fixed per triangle.
 void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region) {
   const StencilFaceState& face = state_.stencil[t.facing];
   uint8_t onPass = 0, onFail = 0;
@@ -332,39 +370,45 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   uint8_t* const stencil = fb_.stencil().data();
   uint64_t fragments = 0, failed = 0;
   withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
-    const v4u passDelta = v4u{} + onPass, failDelta = v4u{} + onFail;
     depthTestRows<decltype(f)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
-        [&](size_t at, v4u, v4u, v4u pass) {
-          v4b bytes;
+        [stencil, onPass, onFail](size_t at, auto, auto, auto pass) {
+          using Codes = decltype(pass);
+          BytesOf<Codes> bytes;
           std::memcpy(&bytes, stencil + at, sizeof bytes);
-          bytes += lowBytes(pass ? passDelta : failDelta);
+          bytes += lowBytes(pass ? Codes{} + onPass : Codes{} + onFail);
           std::memcpy(stencil + at, &bytes, sizeof bytes);
         },
-        [&](size_t at, uint32_t, bool pass) { stencil[at] = uint8_t(stencil[at] + (pass ? onPass : onFail)); });
+        [stencil, onPass, onFail](size_t at, uint32_t, bool pass) {
+          stencil[at] = uint8_t(stencil[at] + (pass ? onPass : onFail));
+        });
   });
   stats_.fragments += fragments;
   stats_.depthFailed += failed;
   stats_.stencilWrites += (onPass != 0 ? fragments - failed : 0) + (onFail != 0 ? failed : 0);
 }
 
-// Depth (and nothing else) for a whole triangle: the shadow maps' pass, four pixels per step. The
+// Depth (and nothing else) for a whole triangle: the shadow maps' pass, eight pixels per step. The
 // store is unconditional (the old value where the test fails); the pixels are this thread's.
 void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region) {
   uint32_t* const depth = fb_.depthCodes().data();
   uint64_t fragments = 0, failed = 0;
-  const bool write = writesDepth_;
-  withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
+  auto rows = [&](auto f, auto write) {
     depthTestRows<decltype(f)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
-        [&](size_t at, v4u codes, v4u stored, v4u pass) {
-          if (!write) return;
-          const v4u next = pass ? codes : stored;
-          std::memcpy(depth + at, &next, sizeof next);
+        [depth](size_t at, auto codes, auto stored, auto pass) {
+          if constexpr (decltype(write)::value) {
+            const decltype(codes) next = pass ? codes : stored;
+            std::memcpy(depth + at, &next, sizeof next);
+          }
         },
-        [&](size_t at, uint32_t code, bool pass) {
-          if (write && pass) depth[at] = code;
+        [depth](size_t at, uint32_t code, bool pass) {
+          if (decltype(write)::value && pass) depth[at] = code;
         });
+  };
+  withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
+    if (writesDepth_) rows(f, std::true_type{});
+    else rows(f, std::false_type{});
   });
   stats_.fragments += fragments;
   stats_.depthFailed += failed;

@@ -87,27 +87,60 @@ struct EdgeLimit {
   void nextRow() {
     q += dq;
     r += dr;
-    if (r >= d) {
-      ++q;
-      r -= d;
-    }
+    const int64_t wrap = r >= d;  // without a branch: the wrap is taken about every other row
+    q += wrap;
+    r -= d & -wrap;
   }
 };
 
-// The same coverage as rasterizeTriangle, delivered as one interval per row: a triangle is
-// convex, so the covered centres of a row are contiguous. The interval's ends are the exact
-// solutions of E_i + bias_i >= 0 in integers (EdgeLimit), so every pixel is covered here exactly
-// when rasterizeTriangle covers it. Sink: void(int y, int xl, int xr, const int64_t e[3]) with the
-// unbiased edge values at (xl, y); rows bottom to top.
-template <class SpanSink>
-void rasterizeSpans(const TriangleSetup& t, const Rect& region, SpanSink&& sink) {
+namespace detail {
+
+// The row loop of rasterizeSpans with the number of left and right edges fixed at compile time
+// (0 means "given at run time", with the horizontal edges), and the edge values at the span start
+// computed only when the sink takes them.
+template <bool WithEdges, int Lefts, int Rights, class SpanSink>
+void spanRows(const TriangleSetup& t, int x0, int y0, int y1, int64_t width, int64_t row[3], EdgeLimit* left,
+              int lefts, EdgeLimit* right, int rights, const int* flat, int flats, SpanSink& sink) {
+  constexpr bool fixed = Lefts > 0;
+  if constexpr (fixed) {
+    lefts = Lefts;
+    rights = Rights;
+  }
+  const bool trackRows = WithEdges || flats > 0;
+  for (int y = y0; y <= y1; ++y) {
+    int64_t lo = left[0].q, hi = std::min(width, right[0].q);
+    for (int k = 1; k < lefts; ++k) lo = std::max(lo, left[k].q);
+    for (int k = 1; k < rights; ++k) hi = std::min(hi, right[k].q);
+    lo = std::max<int64_t>(lo, 0);
+    if constexpr (!fixed)
+      for (int k = 0; k < flats; ++k)
+        if (row[flat[k]] < 0) hi = -1;
+    if (lo <= hi) {
+      if constexpr (WithEdges) {
+        int64_t e[3];
+        for (int i = 0; i < 3; ++i) e[i] = row[i] + t.stepX[i] * lo - t.bias[i];
+        sink(y, x0 + int(lo), x0 + int(hi), e);
+      } else {
+        sink(y, x0 + int(lo), x0 + int(hi));
+      }
+    }
+    if (trackRows)
+      for (int i = 0; i < 3; ++i) row[i] += t.stepY[i];
+    for (int k = 0; k < lefts; ++k) left[k].nextRow();
+    for (int k = 0; k < rights; ++k) right[k].nextRow();
+  }
+}
+
+template <bool WithEdges, class SpanSink>
+void spans(const TriangleSetup& t, const Rect& region, SpanSink& sink) {
   const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
   const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
   if (x0 > x1 || y0 > y1) return;
   int64_t row[3];
+  // Slot 0 of each side stands for "no limit" when the triangle has no edge of that side.
   EdgeLimit left[3], right[3];
   int lefts = 0, rights = 0;
-  int64_t flat[3];  // horizontal edges (stepX = 0): the row is covered only while E >= 0
+  int flat[3];  // horizontal edges (stepX = 0): the row is covered only while E >= 0
   int flats = 0;
   for (int i = 0; i < 3; ++i) {
     row[i] = t.edgeAt(i, x0, y0) + t.bias[i];
@@ -117,21 +150,34 @@ void rasterizeSpans(const TriangleSetup& t, const Rect& region, SpanSink&& sink)
     else flat[flats++] = i;
   }
   const int64_t width = x1 - x0;
-  for (int y = y0; y <= y1; ++y) {
-    int64_t lo = 0, hi = width;
-    for (int k = 0; k < lefts; ++k) lo = std::max(lo, left[k].q);
-    for (int k = 0; k < rights; ++k) hi = std::min(hi, right[k].q);
-    for (int k = 0; k < flats; ++k)
-      if (row[flat[k]] < 0) hi = -1;
-    if (lo <= hi) {
-      int64_t e[3];
-      for (int i = 0; i < 3; ++i) e[i] = row[i] + t.stepX[i] * lo - t.bias[i];
-      sink(y, x0 + int(lo), x0 + int(hi), e);
-    }
-    for (int i = 0; i < 3; ++i) row[i] += t.stepY[i];
-    for (int k = 0; k < lefts; ++k) left[k].nextRow();
-    for (int k = 0; k < rights; ++k) right[k].nextRow();
-  }
+  if (lefts == 0) left[0].start(0, 0, 1);           // lo = 0 on every row
+  if (rights == 0) right[0].start(width, 0, 1);     // hi = width on every row
+  // The usual triangle has no horizontal edge: one edge on one side, two on the other.
+  if (flats == 0 && lefts == 1 && rights == 2)
+    spanRows<WithEdges, 1, 2>(t, x0, y0, y1, width, row, left, lefts, right, rights, flat, flats, sink);
+  else if (flats == 0 && lefts == 2 && rights == 1)
+    spanRows<WithEdges, 2, 1>(t, x0, y0, y1, width, row, left, lefts, right, rights, flat, flats, sink);
+  else
+    spanRows<WithEdges, 0, 0>(t, x0, y0, y1, width, row, left, std::max(lefts, 1), right, std::max(rights, 1), flat,
+                              flats, sink);
+}
+
+}  // namespace detail
+
+// The same coverage as rasterizeTriangle, delivered as one interval per row: a triangle is
+// convex, so the covered centres of a row are contiguous. The interval's ends are the exact
+// solutions of E_i + bias_i >= 0 in integers (EdgeLimit), so every pixel is covered here exactly
+// when rasterizeTriangle covers it. Sink: void(int y, int xl, int xr, const int64_t e[3]) with the
+// unbiased edge values at (xl, y); rows bottom to top.
+template <class SpanSink>
+void rasterizeSpans(const TriangleSetup& t, const Rect& region, SpanSink&& sink) {
+  detail::spans<true>(t, region, sink);
+}
+
+// rasterizeSpans for a sink that needs no edge values: void(int y, int xl, int xr).
+template <class SpanSink>
+void rasterizeRowSpans(const TriangleSetup& t, const Rect& region, SpanSink&& sink) {
+  detail::spans<false>(t, region, sink);
 }
 
 }  // namespace shadowref
