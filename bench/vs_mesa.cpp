@@ -335,6 +335,18 @@ Agreement agreement(const Framebuffer& a, const Framebuffer& b) {
   return r;
 }
 
+// Where two frames are more than 2/255 apart: red on a dimmed grey copy of `a`, to find the few.
+Framebuffer differenceImage(const Framebuffer& a, const Framebuffer& b) {
+  Framebuffer out = a;
+  for (size_t i = 0; i < out.color().size(); ++i) {
+    int worst = 0;
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(toByte(a.color()[i][k]) - toByte(b.color()[i][k])));
+    const float grey = 0.25f * (a.color()[i].r + a.color()[i].g + a.color()[i].b) / 3.0f;
+    out.color()[i] = worst > 2 ? glm::vec4(1.0f, 0.0f, 0.0f, 1.0f) : glm::vec4(grey, grey, grey, 1.0f);
+  }
+  return out;
+}
+
 // In this process: the Mesa driver is GALLIUM_DRIVER's (llvmpipe unless set), one context for all.
 int runAgreement(const std::string& imageDir) {
   setenv("GALLIUM_DRIVER", "llvmpipe", 0);
@@ -354,7 +366,11 @@ int runAgreement(const std::string& imageDir) {
       MesaFrameRenderer mesa(scene, scene.shadow.method, lighting);
       mesa.render();
       const Framebuffer frame = mesa.readColor();
-      if (!imageDir.empty()) writePng(frame, imageDir + "/" + c.label + "-mesa-" + lightingName(lighting) + ".png");
+      if (!imageDir.empty()) {
+        const std::string stem = imageDir + "/" + c.label + "-mesa-" + lightingName(lighting);
+        writePng(frame, stem + ".png");
+        writePng(differenceImage(reference.framebuffer, frame), stem + "-diff.png");
+      }
       const Agreement a = agreement(reference.framebuffer, frame);
       std::printf(" | %7.3f%% %8zu %6.3f %4d", 100.0 * a.over2, a.over2Pixels, a.meanAbs, a.maxAbs);
     }
@@ -363,7 +379,9 @@ int runAgreement(const std::string& imageDir) {
     renderer = conformance::mesaRenderer();
   }
   std::printf("Mesa: %s\n", renderer.c_str());
-  if (!imageDir.empty()) std::printf("images: %s/<scene>-{shadowref,mesa-fixed,mesa-perpixel}.png\n", imageDir.c_str());
+  if (!imageDir.empty())
+    std::printf("images: %s/<scene>-{shadowref,mesa-fixed,mesa-perpixel}.png, and -diff.png: red where > 2/255\n",
+                imageDir.c_str());
   return 0;
 }
 
