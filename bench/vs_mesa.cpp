@@ -147,7 +147,7 @@ int runWorker(const std::string& engine, int threads, int frames, const SceneCas
     MesaFrameRenderer mesa(scene, scene.shadow.method, lighting);
     timed([&] { mesa.render(); });
     if (snapshot) writePng(mesa.readColor(), snapshot);
-    std::printf("# %s, %s lighting\n", conformance::mesaRenderer().c_str(), lightingName(lighting));
+    std::printf("# %s\n", conformance::mesaRenderer().c_str());  // the lighting is in the engine's name
   }
   std::printf("W");
   for (double m : wallMs) std::printf(" %.4f", m);
@@ -457,7 +457,9 @@ void compareScenes(const Settings& s, std::ofstream& csv) {
 }
 
 void scaling(const Settings& s, std::ofstream& csv) {
-  const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1}};
+  // llvmpipe both ways: per-pixel lighting costs per light and fragment, as shadowref's does.
+  const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1},
+                                       {Engine::Llvmpipe, 1, MesaLighting::PerPixel}};
   Settings fewer = s;
   fewer.rounds = std::max(1, s.rounds / 2 + 1);
   fewer.frames = std::max(1, s.frames / 2 + 1);
@@ -480,8 +482,8 @@ void scaling(const Settings& s, std::ofstream& csv) {
   for (const Series& ser : series) {
     std::printf("\n%s: ms per frame, median of %d alternating runs of %d frames\n", ser.title.c_str(), fewer.rounds,
                 fewer.frames);
-    std::printf("%8s %9s %9s %9s   %3s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "", "sr-1t",
-                "sr-2t", "llvm-1t");
+    std::printf("%8s %9s %9s %9s %9s   %3s %9s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "llpp-1t",
+                "", "sr-1t", "sr-2t", "llvm-1t", "llpp-1t");
     std::vector<std::vector<double>> y(configs.size()), yCpu(configs.size());
     for (size_t i = 0; i < ser.cases.size(); ++i) {
       const std::vector<Measured> m = measure(ser.cases[i], configs, fewer);
@@ -490,8 +492,8 @@ void scaling(const Settings& s, std::ofstream& csv) {
         y[k].push_back(m[k].median());
         yCpu[k].push_back(m[k].cpuMedian());
       }
-      std::printf("\r%8g %9.2f %9.2f %9.2f   cpu %9.2f %9.2f %9.2f\n", ser.x[i], y[0].back(), y[1].back(),
-                  y[2].back(), m[0].cpuMedian(), m[1].cpuMedian(), m[2].cpuMedian());
+      std::printf("\r%8g %9.2f %9.2f %9.2f %9.2f   cpu %9.2f %9.2f %9.2f %9.2f\n", ser.x[i], y[0].back(), y[1].back(),
+                  y[2].back(), y[3].back(), m[0].cpuMedian(), m[1].cpuMedian(), m[2].cpuMedian(), m[3].cpuMedian());
       std::fflush(stdout);
     }
     // Least-squares lines: R2 near 1 means the cost grows linearly.
