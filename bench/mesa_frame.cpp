@@ -3,6 +3,7 @@
 #include <GL/osmesa.h>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -214,6 +215,10 @@ void loadMatrix(GLenum mode, const glm::dmat4& m) {
 // shadowref does, so only the per-fragment arithmetic is GL's. The world position and normal are
 // interpolated (the normal normalised per vertex first, as prepareInstances does); the position
 // goes through ftransform() so the depth values are those of the fixed-function volume passes.
+// One program per number of lights (0 to 8) and per frame kind (shadow-mapped or not), as a GL
+// application would specialise them: with the count a compile-time constant the loop unrolls to
+// constant array indices, where a loop to a uniform count costs llvmpipe about a third more
+// (room: 36 against 28 ms per frame).
 constexpr int kMaxLights = 8;
 
 constexpr const char* kVertexShader = R"(#version 120
@@ -230,10 +235,10 @@ void main() {
 
 // Lights as lightTerms gives them: position.w = 0 directional (xyz the unit vector towards the
 // light), 1 point or spot; spot.w is the cosine of the cutoff, -2 for a light that is no spot.
-constexpr const char* kFragmentShader = R"(#version 120
+// Compiled after "#version 120" and the defines LIGHT_COUNT and SHADOW_MAPPED (0 or 1).
+constexpr const char* kFragmentShader = R"(
 uniform vec3 eye;
 uniform vec3 ambient;
-uniform int lightCount;
 uniform vec4 lightPosition[8];
 uniform vec3 lightAttenuation[8];
 uniform vec4 lightSpot[8];
@@ -243,7 +248,6 @@ uniform vec3 lightSpecular[8];
 uniform bool specular;
 uniform bool blinn;
 uniform float shininess;
-uniform bool shadowMapped;
 uniform sampler2DShadow shadowMap;
 uniform mat4 shadowMatrix;
 uniform float compareFail;
@@ -287,24 +291,22 @@ void main() {
   if (len > 0.0) n = n / len;
   if (!gl_FrontFacing) n = -n;  // two-sided: a back face is lit with the normal flipped
   vec3 color = ambient;
-  for (int i = 0; i < 8; ++i) {
-    if (i >= lightCount) break;
-    color += lightContribution(i, worldPosition, n);
-  }
-  if (shadowMapped) {
-    // strq = T . world position; the texture's compare mode gives 1 for r/q <= D. Behind a
-    // perspective light (q <= 0) shadowref's lookup says lit.
-    vec4 strq = shadowMatrix * vec4(worldPosition, 1.0);
-    float lit = shadow2DProj(shadowMap, strq).r;
-    color *= strq.q > 0.0 ? mix(compareFail, 1.0, lit) : 1.0;
-  }
+  for (int i = 0; i < LIGHT_COUNT; ++i) color += lightContribution(i, worldPosition, n);
+#if SHADOW_MAPPED
+  // strq = T . world position; the texture's compare mode gives 1 for r/q <= D. Behind a
+  // perspective light (q <= 0) shadowref's lookup says lit.
+  vec4 strq = shadowMatrix * vec4(worldPosition, 1.0);
+  float lit = shadow2DProj(shadowMap, strq).r;
+  color *= strq.q > 0.0 ? mix(compareFail, 1.0, lit) : 1.0;
+#endif
   gl_FragColor = vec4(color, 1.0);
 }
 )";
 
-GLuint compileShader(const GlFunctions& gl, GLenum type, const char* source) {
+GLuint compileShader(const GlFunctions& gl, GLenum type, const std::string& source) {
   const GLuint shader = gl.createShader(type);
-  gl.shaderSource(shader, 1, &source, nullptr);
+  const char* text = source.c_str();
+  gl.shaderSource(shader, 1, &text, nullptr);
   gl.compileShader(shader);
   GLint ok = GL_FALSE;
   gl.getShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -324,17 +326,18 @@ GLuint compileShader(const GlFunctions& gl, GLenum type, const char* source) {
 // ignores it).
 struct PerPixelProgram {
   GLuint program = 0;
-  GLint world = -1, normalMatrix = -1, eye = -1, ambient = -1, lightCount = -1, lightPosition = -1,
-        lightAttenuation = -1, lightSpot = -1, lightSpotExponent = -1, lightDiffuse = -1, lightSpecular = -1,
-        specular = -1, blinn = -1, shininess = -1, shadowMapped = -1, shadowMap = -1, shadowMatrix = -1,
-        compareFail = -1;
+  GLint world = -1, normalMatrix = -1, eye = -1, ambient = -1, lightPosition = -1, lightAttenuation = -1,
+        lightSpot = -1, lightSpotExponent = -1, lightDiffuse = -1, lightSpecular = -1, specular = -1, blinn = -1,
+        shininess = -1, shadowMap = -1, shadowMatrix = -1, compareFail = -1;
 };
 
-PerPixelProgram buildPerPixelProgram(const GlFunctions& gl) {
+PerPixelProgram buildPerPixelProgram(const GlFunctions& gl, int lightCount, bool shadowMapped) {
   const GLuint vs = compileShader(gl, GL_VERTEX_SHADER, kVertexShader);
   GLuint fs = 0;
   try {
-    fs = compileShader(gl, GL_FRAGMENT_SHADER, kFragmentShader);
+    fs = compileShader(gl, GL_FRAGMENT_SHADER,
+                       "#version 120\n#define LIGHT_COUNT " + std::to_string(lightCount) + "\n#define SHADOW_MAPPED " +
+                           (shadowMapped ? "1" : "0") + "\n" + kFragmentShader);
   } catch (...) {
     gl.deleteShader(vs);
     throw;
@@ -361,7 +364,6 @@ PerPixelProgram buildPerPixelProgram(const GlFunctions& gl) {
   p.normalMatrix = at("normalMatrix");
   p.eye = at("eye");
   p.ambient = at("ambient");
-  p.lightCount = at("lightCount");
   p.lightPosition = at("lightPosition");
   p.lightAttenuation = at("lightAttenuation");
   p.lightSpot = at("lightSpot");
@@ -371,7 +373,6 @@ PerPixelProgram buildPerPixelProgram(const GlFunctions& gl) {
   p.specular = at("specular");
   p.blinn = at("blinn");
   p.shininess = at("shininess");
-  p.shadowMapped = at("shadowMapped");
   p.shadowMap = at("shadowMap");
   p.shadowMatrix = at("shadowMatrix");
   p.compareFail = at("compareFail");
@@ -443,7 +444,8 @@ struct MesaFrameRenderer::Impl {
   ShadowMethod method;
   MesaLighting lighting;
   GlFunctions gl;
-  PerPixelProgram perPixel;
+  std::array<PerPixelProgram, kMaxLights + 1> programs;  // by number of lights, made when first drawn
+  glm::dmat4 shadowMatrix{1.0};                          // T of the shadow-map camera pass
   SceneView view;
   std::vector<Instance> instances;
   std::vector<MeshBuffers> render, shadow;  // per instance
@@ -473,7 +475,6 @@ struct MesaFrameRenderer::Impl {
     for (const Light& light : scene.lights)
       for (const Light& l : expandSoftLight(light)) lights.push_back(l);
     if (method == ShadowMethod::ShadowMap) createShadowMap();
-    if (lighting == MesaLighting::PerPixel) perPixel = buildPerPixelProgram(gl);
 
     glDisable(GL_DITHER);
     glShadeModel(GL_SMOOTH);
@@ -491,7 +492,8 @@ struct MesaFrameRenderer::Impl {
       }
     if (mapFramebuffer) gl.deleteFramebuffers(1, &mapFramebuffer);
     if (mapTexture) glDeleteTextures(1, &mapTexture);
-    if (perPixel.program) gl.deleteProgram(perPixel.program);
+    for (const PerPixelProgram& p : programs)
+      if (p.program) gl.deleteProgram(p.program);
   }
 
   void createShadowMap() {
@@ -547,15 +549,7 @@ struct MesaFrameRenderer::Impl {
     const bool shadowMapped = method == ShadowMethod::ShadowMap;
     glEnable(GL_LIGHTING);
     setGlobalAmbient(includeAmbient ? scene.ambient : glm::dvec3(0.0));
-    bool programBound = false;
-    if (lighting == MesaLighting::PerPixel) {
-      gl.useProgram(perPixel.program);
-      programBound = true;
-      uniformVec3(gl, perPixel.eye, view.eye);
-      gl.uniform1i(perPixel.shadowMapped, shadowMapped ? 1 : 0);
-      gl.uniform1i(perPixel.shadowMap, 0);  // texture unit 0
-      gl.uniform1f(perPixel.compareFail, GLfloat(scene.shadow.compareFail));
-    }
+    const PerPixelProgram* bound = nullptr;  // nullptr: fixed function
     std::vector<const Light*> inRange;
     for (size_t i = 0; i < instances.size(); ++i) {
       const Instance& inst = instances[i];
@@ -566,15 +560,33 @@ struct MesaFrameRenderer::Impl {
       const Material& material = scene.materials.at(size_t(inst.material));
       const bool programmed =
           lighting == MesaLighting::PerPixel && (shadowMapped || material.shading == ShadingModel::PerPixel);
-      if (programmed != programBound) {
-        gl.useProgram(programmed ? perPixel.program : 0);
-        programBound = programmed;
+      const PerPixelProgram* wanted = programmed ? &program(int(inRange.size())) : nullptr;
+      if (wanted != bound) {
+        gl.useProgram(wanted ? wanted->program : 0);
+        bound = wanted;
       }
-      if (programmed) drawPerPixel(i, state, inRange, includeAmbient);
+      if (programmed) drawPerPixel(*bound, i, state, inRange, includeAmbient);
       else drawFixedFunction(i, state, inRange);
     }
-    if (programBound) gl.useProgram(0);
+    if (bound) gl.useProgram(0);
     glDisable(GL_LIGHTING);
+  }
+
+  // The per-pixel program for `lights` lights, compiled when first asked for, with the uniforms
+  // that stay for the renderer's life: the camera, the sampler's unit, the compare-fail value, T.
+  const PerPixelProgram& program(int lightCount) {
+    PerPixelProgram& p = programs.at(size_t(lightCount));
+    if (p.program) return p;
+    p = buildPerPixelProgram(gl, lightCount, method == ShadowMethod::ShadowMap);
+    GLint current = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+    gl.useProgram(p.program);
+    uniformVec3(gl, p.eye, view.eye);
+    gl.uniform1i(p.shadowMap, 0);  // texture unit 0
+    gl.uniform1f(p.compareFail, GLfloat(scene.shadow.compareFail));
+    uniformMatrix(gl, p.shadowMatrix, shadowMatrix);
+    gl.useProgram(GLuint(current));
+    return p;
   }
 
   void drawFixedFunction(size_t i, const RenderState& state, const std::vector<const Light*>& inRange) {
@@ -590,7 +602,8 @@ struct MesaFrameRenderer::Impl {
 
   // The uniforms of one draw: the instance's matrices, the ambient term and the lights' terms as
   // drawLit gives them to PerPixelLightingShader (toPhongMaterial, toPhongLight, lightTerms).
-  void drawPerPixel(size_t i, const RenderState& state, const std::vector<const Light*>& inRange, bool includeAmbient) {
+  void drawPerPixel(const PerPixelProgram& perPixel, size_t i, const RenderState& state,
+                    const std::vector<const Light*>& inRange, bool includeAmbient) {
     const Instance& inst = instances[i];
     const PhongMaterial material = toPhongMaterial(scene.materials.at(size_t(inst.material)));
     uniformMatrix(gl, perPixel.world, inst.world);
@@ -614,7 +627,6 @@ struct MesaFrameRenderer::Impl {
       }
       exponent[k] = GLfloat(t.spotExponent);
     }
-    gl.uniform1i(perPixel.lightCount, count);
     if (count > 0) {
       gl.uniform4fv(perPixel.lightPosition, count, position);
       gl.uniform3fv(perPixel.lightAttenuation, count, attenuation);
@@ -730,9 +742,9 @@ struct MesaFrameRenderer::Impl {
     loadMatrix(GL_PROJECTION, view.projection);
     glBindTexture(GL_TEXTURE_2D, mapTexture);
     if (lighting == MesaLighting::PerPixel) {
-      // The program does the lookup itself, with T as a uniform on its world position.
-      gl.useProgram(perPixel.program);
-      uniformMatrix(gl, perPixel.shadowMatrix, textureMatrix(lv));
+      // The program does the lookup itself, with T as a uniform on its world position. T is the
+      // same every frame (the light and the scene stay): given to each program as it is made.
+      shadowMatrix = textureMatrix(lv);
       drawLitPass(camera, {&light}, true);
       return;
     }
