@@ -316,8 +316,9 @@ GLuint compileShader(const GlFunctions& gl, GLenum type, const std::string& sour
     std::string log(size_t(std::max(length, 1)), '\0');
     gl.getShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
     gl.deleteShader(shader);
-    throw std::runtime_error(std::string("vs-mesa: the per-pixel ") + (type == GL_VERTEX_SHADER ? "vertex" : "fragment") +
-                             " shader does not compile:\n" + log.c_str());
+    const char* kind = type == GL_VERTEX_SHADER ? "vertex" : "fragment";
+    throw std::runtime_error(std::string("vs-mesa: the per-pixel ") + kind + " shader does not compile:\n" +
+                             log.c_str());
   }
   return shader;
 }

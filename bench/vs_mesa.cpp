@@ -441,7 +441,8 @@ void compareScenes(const Settings& s, std::ofstream& csv) {
                 c.label.c_str(), sr1, sr2, ll1, ll2, soft, lp1, lp2, sopp, ll1 / sr1, ll2 / sr2, soft / sr1, lp1 / sr1,
                 lp2 / sr2, sopp / sr1, sr1 / sr2);
     std::printf("%-15s", "");
-    for (size_t i = 0; i < configs.size(); ++i) std::printf(" %*s", configs[i].engine == Engine::Softpipe ? 8 : 7, range(m[i]).c_str());
+    for (size_t i = 0; i < configs.size(); ++i)
+      std::printf(" %*s", configs[i].engine == Engine::Softpipe ? 8 : 7, range(m[i]).c_str());
     std::printf("   (lowest-highest run median)\n");
     renderers = m[2].renderer + "; " + m[4].renderer;
     std::fflush(stdout);
