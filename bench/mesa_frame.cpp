@@ -445,8 +445,8 @@ struct MesaFrameRenderer::Impl {
   ShadowMethod method;
   MesaLighting lighting;
   GlFunctions gl;
-  std::array<PerPixelProgram, kMaxLights + 1> programs;  // by number of lights, made when first drawn
-  glm::dmat4 shadowMatrix{1.0};                          // T of the shadow-map camera pass
+  std::array<PerPixelProgram, kMaxLights + 1> programs;  // by number of lights
+  glm::dmat4 shadowMatrix{1.0};                          // T of the shadow-map camera pass, as given
   SceneView view;
   std::vector<Instance> instances;
   std::vector<MeshBuffers> render, shadow;  // per instance
@@ -476,6 +476,10 @@ struct MesaFrameRenderer::Impl {
     for (const Light& light : scene.lights)
       for (const Light& l : expandSoftLight(light)) lights.push_back(l);
     if (method == ShadowMethod::ShadowMap) createShadowMap();
+    // All nine now: a shader error is reported here, before any frame (an exception out of a frame
+    // left Mesa crashing in OSMesaDestroyContext at exit), and no frame pays for a compile.
+    if (lighting == MesaLighting::PerPixel)
+      for (int k = 0; k <= kMaxLights; ++k) buildProgram(k);
 
     glDisable(GL_DITHER);
     glShadeModel(GL_SMOOTH);
@@ -573,21 +577,30 @@ struct MesaFrameRenderer::Impl {
     glDisable(GL_LIGHTING);
   }
 
-  // The per-pixel program for `lights` lights, compiled when first asked for, with the uniforms
-  // that stay for the renderer's life: the camera, the sampler's unit, the compare-fail value, T.
-  const PerPixelProgram& program(int lightCount) {
+  // The per-pixel program for `lightCount` lights, with the uniforms that stay for the renderer's
+  // life: the camera, the sampler's unit, the compare-fail value.
+  void buildProgram(int lightCount) {
     PerPixelProgram& p = programs.at(size_t(lightCount));
-    if (p.program) return p;
     p = buildPerPixelProgram(gl, lightCount, method == ShadowMethod::ShadowMap);
-    GLint current = 0;
-    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
     gl.useProgram(p.program);
     uniformVec3(gl, p.eye, view.eye);
     gl.uniform1i(p.shadowMap, 0);  // texture unit 0
     gl.uniform1f(p.compareFail, GLfloat(scene.shadow.compareFail));
     uniformMatrix(gl, p.shadowMatrix, shadowMatrix);
-    gl.useProgram(GLuint(current));
-    return p;
+    gl.useProgram(0);
+  }
+
+  const PerPixelProgram& program(int lightCount) const { return programs.at(size_t(lightCount)); }
+
+  // T into every program, when it changed (the first frame: the light and the scene stay).
+  void setShadowMatrix(const glm::dmat4& t) {
+    if (t == shadowMatrix) return;
+    shadowMatrix = t;
+    for (const PerPixelProgram& p : programs) {
+      gl.useProgram(p.program);
+      uniformMatrix(gl, p.shadowMatrix, t);
+    }
+    gl.useProgram(0);
   }
 
   void drawFixedFunction(size_t i, const RenderState& state, const std::vector<const Light*>& inRange) {
@@ -743,9 +756,8 @@ struct MesaFrameRenderer::Impl {
     loadMatrix(GL_PROJECTION, view.projection);
     glBindTexture(GL_TEXTURE_2D, mapTexture);
     if (lighting == MesaLighting::PerPixel) {
-      // The program does the lookup itself, with T as a uniform on its world position. T is the
-      // same every frame (the light and the scene stay): given to each program as it is made.
-      shadowMatrix = textureMatrix(lv);
+      // The program does the lookup itself, with T as a uniform on its world position.
+      setShadowMatrix(textureMatrix(lv));
       drawLitPass(camera, {&light}, true);
       return;
     }
