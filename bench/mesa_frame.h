@@ -22,6 +22,8 @@
 //    modulates by the scene's compare-fail value, as ShadowMappedShader does. Like for like with
 //    shadowref, up to float against double and rasterization ties (vs_mesa --agreement measures it).
 //    A Gouraud material in a volume frame stays fixed function (what shadowref's Gouraud does).
+//    One program per light count (0 to 8), all compiled in the constructor, as an application
+//    would specialise them: a loop to a uniform count made llvmpipe twice as slow.
 #pragma once
 
 #include <memory>
