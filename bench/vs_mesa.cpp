@@ -10,9 +10,9 @@
 //
 // Mesa runs twice over: with GL's fixed-function lighting (per vertex, less work per fragment than
 // shadowref does) and with a GLSL program that shades per pixel with shadowref's Phong model, the
-// like-for-like comparison (mesa_frame.h). --agreement prints how close each Mesa frame is to
-// shadowref's (share of pixels more than 2/255 apart, mean difference), which is what makes the
-// per-pixel columns like for like (also the last table of a whole run); --images DIR keeps those
+// like-for-like comparison (mesa_frame.h). How close each Mesa frame is to shadowref's (share of
+// pixels more than 2/255 apart, mean difference) is the last table of a whole run: it is what shows
+// the per-pixel columns like for like. --agreement prints only that table, --images DIR keeps its
 // frames as PNG.
 //
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]
