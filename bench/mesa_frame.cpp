@@ -3,11 +3,13 @@
 #include <GL/osmesa.h>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "conformance/osmesa_harness.h"
+#include "raster/lighting.h"
 #include "raster/render_state.h"
 #include "shadow/facing.h"
 #include "shadow/light_view.h"
@@ -24,6 +26,28 @@ namespace {
 
 // GL 1.5+ entry points, loaded like the conformance harness does (gl.h declares GL 1.1 only).
 struct GlFunctions {
+  PFNGLCREATESHADERPROC createShader = nullptr;
+  PFNGLSHADERSOURCEPROC shaderSource = nullptr;
+  PFNGLCOMPILESHADERPROC compileShader = nullptr;
+  PFNGLGETSHADERIVPROC getShaderiv = nullptr;
+  PFNGLGETSHADERINFOLOGPROC getShaderInfoLog = nullptr;
+  PFNGLDELETESHADERPROC deleteShader = nullptr;
+  PFNGLCREATEPROGRAMPROC createProgram = nullptr;
+  PFNGLATTACHSHADERPROC attachShader = nullptr;
+  PFNGLLINKPROGRAMPROC linkProgram = nullptr;
+  PFNGLGETPROGRAMIVPROC getProgramiv = nullptr;
+  PFNGLGETPROGRAMINFOLOGPROC getProgramInfoLog = nullptr;
+  PFNGLDELETEPROGRAMPROC deleteProgram = nullptr;
+  PFNGLUSEPROGRAMPROC useProgram = nullptr;
+  PFNGLGETUNIFORMLOCATIONPROC getUniformLocation = nullptr;
+  PFNGLUNIFORM1IPROC uniform1i = nullptr;
+  PFNGLUNIFORM1FPROC uniform1f = nullptr;
+  PFNGLUNIFORM3FPROC uniform3f = nullptr;
+  PFNGLUNIFORM1FVPROC uniform1fv = nullptr;
+  PFNGLUNIFORM3FVPROC uniform3fv = nullptr;
+  PFNGLUNIFORM4FVPROC uniform4fv = nullptr;
+  PFNGLUNIFORMMATRIX3FVPROC uniformMatrix3fv = nullptr;
+  PFNGLUNIFORMMATRIX4FVPROC uniformMatrix4fv = nullptr;
   PFNGLSTENCILFUNCSEPARATEPROC stencilFuncSeparate = nullptr;
   PFNGLSTENCILOPSEPARATEPROC stencilOpSeparate = nullptr;
   PFNGLSTENCILMASKSEPARATEPROC stencilMaskSeparate = nullptr;
@@ -59,6 +83,28 @@ GlFunctions loadFunctions() {
   gl.bindFramebuffer = load<PFNGLBINDFRAMEBUFFERPROC>("glBindFramebuffer");
   gl.framebufferTexture2D = load<PFNGLFRAMEBUFFERTEXTURE2DPROC>("glFramebufferTexture2D");
   gl.checkFramebufferStatus = load<PFNGLCHECKFRAMEBUFFERSTATUSPROC>("glCheckFramebufferStatus");
+  gl.createShader = load<PFNGLCREATESHADERPROC>("glCreateShader");
+  gl.shaderSource = load<PFNGLSHADERSOURCEPROC>("glShaderSource");
+  gl.compileShader = load<PFNGLCOMPILESHADERPROC>("glCompileShader");
+  gl.getShaderiv = load<PFNGLGETSHADERIVPROC>("glGetShaderiv");
+  gl.getShaderInfoLog = load<PFNGLGETSHADERINFOLOGPROC>("glGetShaderInfoLog");
+  gl.deleteShader = load<PFNGLDELETESHADERPROC>("glDeleteShader");
+  gl.createProgram = load<PFNGLCREATEPROGRAMPROC>("glCreateProgram");
+  gl.attachShader = load<PFNGLATTACHSHADERPROC>("glAttachShader");
+  gl.linkProgram = load<PFNGLLINKPROGRAMPROC>("glLinkProgram");
+  gl.getProgramiv = load<PFNGLGETPROGRAMIVPROC>("glGetProgramiv");
+  gl.getProgramInfoLog = load<PFNGLGETPROGRAMINFOLOGPROC>("glGetProgramInfoLog");
+  gl.deleteProgram = load<PFNGLDELETEPROGRAMPROC>("glDeleteProgram");
+  gl.useProgram = load<PFNGLUSEPROGRAMPROC>("glUseProgram");
+  gl.getUniformLocation = load<PFNGLGETUNIFORMLOCATIONPROC>("glGetUniformLocation");
+  gl.uniform1i = load<PFNGLUNIFORM1IPROC>("glUniform1i");
+  gl.uniform1f = load<PFNGLUNIFORM1FPROC>("glUniform1f");
+  gl.uniform3f = load<PFNGLUNIFORM3FPROC>("glUniform3f");
+  gl.uniform1fv = load<PFNGLUNIFORM1FVPROC>("glUniform1fv");
+  gl.uniform3fv = load<PFNGLUNIFORM3FVPROC>("glUniform3fv");
+  gl.uniform4fv = load<PFNGLUNIFORM4FVPROC>("glUniform4fv");
+  gl.uniformMatrix3fv = load<PFNGLUNIFORMMATRIX3FVPROC>("glUniformMatrix3fv");
+  gl.uniformMatrix4fv = load<PFNGLUNIFORMMATRIX4FVPROC>("glUniformMatrix4fv");
   return gl;
 }
 
@@ -163,6 +209,191 @@ void loadMatrix(GLenum mode, const glm::dmat4& m) {
   glLoadMatrixd(&m[0][0]);  // glm is column-major like GL
 }
 
+// shadowref's per-pixel Phong model (raster/lighting.cpp lightContribution, PerPixelLightingShader,
+// and shadow_map_renderer.cpp ShadowMappedShader) in GLSL 1.20, in float. Everything that does not
+// depend on the fragment comes from lightTerms, computed in double on the CPU per draw exactly as
+// shadowref does, so only the per-fragment arithmetic is GL's. The world position and normal are
+// interpolated (the normal normalised per vertex first, as prepareInstances does); the position
+// goes through ftransform() so the depth values are those of the fixed-function volume passes.
+// One program per number of lights (0 to 8) and per frame kind (shadow-mapped or not), as a GL
+// application would specialise them: with the count a compile-time constant the loop unrolls to
+// constant array indices and the shadow branch goes, where one program with a loop to a uniform
+// count took llvmpipe more than twice as long (room: 36 against 16 ms per frame).
+constexpr int kMaxLights = 8;
+
+constexpr const char* kVertexShader = R"(#version 120
+uniform mat4 world;
+uniform mat3 normalMatrix;
+varying vec3 worldPosition;
+varying vec3 worldNormal;
+void main() {
+  worldPosition = (world * gl_Vertex).xyz;
+  worldNormal = normalize(normalMatrix * gl_Normal);
+  gl_Position = ftransform();
+}
+)";
+
+// Lights as lightTerms gives them: position.w = 0 directional (xyz the unit vector towards the
+// light), 1 point or spot; spot.w is the cosine of the cutoff, -2 for a light that is no spot.
+// Compiled after "#version 120" and the defines LIGHT_COUNT and SHADOW_MAPPED (0 or 1).
+constexpr const char* kFragmentShader = R"(
+uniform vec3 eye;
+uniform vec3 ambient;
+uniform vec4 lightPosition[8];
+uniform vec3 lightAttenuation[8];
+uniform vec4 lightSpot[8];
+uniform float lightSpotExponent[8];
+uniform vec3 lightDiffuse[8];
+uniform vec3 lightSpecular[8];
+uniform bool specular;
+uniform bool blinn;
+uniform float shininess;
+uniform sampler2DShadow shadowMap;
+uniform mat4 shadowMatrix;
+uniform float compareFail;
+varying vec3 worldPosition;
+varying vec3 worldNormal;
+
+vec3 lightContribution(int i, vec3 p, vec3 n) {
+  vec3 l;
+  float attenuation = 1.0;
+  if (lightPosition[i].w == 0.0) {
+    l = lightPosition[i].xyz;
+  } else {
+    vec3 toLight = lightPosition[i].xyz - p;
+    float d = length(toLight);
+    if (d == 0.0) return vec3(0.0);
+    l = toLight / d;
+    vec3 a = lightAttenuation[i];
+    attenuation = 1.0 / (a.x + a.y * d + a.z * d * d);
+    if (lightSpot[i].w > -1.5) {
+      float cosAngle = dot(-l, lightSpot[i].xyz);
+      if (cosAngle < lightSpot[i].w) return vec3(0.0);
+      // pow(x, 0) is 1 in C even for x = 0; GLSL leaves pow(0, 0) undefined.
+      if (lightSpotExponent[i] != 0.0) attenuation *= pow(max(cosAngle, 0.0), lightSpotExponent[i]);
+    }
+  }
+  float nDotL = dot(n, l);
+  if (nDotL <= 0.0) return vec3(0.0);
+  vec3 color = lightDiffuse[i] * nDotL;
+  if (specular) {
+    vec3 v = normalize(eye - p);
+    float s = blinn ? max(dot(n, normalize(l + v)), 0.0) : max(dot(2.0 * nDotL * n - l, v), 0.0);
+    // pow(0, n) is 0 in C; GLSL computes pow through log2, keep 0 out of it.
+    color += lightSpecular[i] * (shininess == 0.0 ? 1.0 : s > 0.0 ? pow(s, shininess) : 0.0);
+  }
+  return attenuation * color;
+}
+
+void main() {
+  vec3 n = worldNormal;
+  float len = length(n);
+  if (len > 0.0) n = n / len;
+  if (!gl_FrontFacing) n = -n;  // two-sided: a back face is lit with the normal flipped
+  vec3 color = ambient;
+  for (int i = 0; i < LIGHT_COUNT; ++i) color += lightContribution(i, worldPosition, n);
+#if SHADOW_MAPPED
+  // strq = T . world position; the texture's compare mode gives 1 for r/q <= D. Behind a
+  // perspective light (q <= 0) shadowref's lookup says lit.
+  vec4 strq = shadowMatrix * vec4(worldPosition, 1.0);
+  float lit = shadow2DProj(shadowMap, strq).r;
+  color *= strq.q > 0.0 ? mix(compareFail, 1.0, lit) : 1.0;
+#endif
+  gl_FragColor = vec4(color, 1.0);
+}
+)";
+
+GLuint compileShader(const GlFunctions& gl, GLenum type, const std::string& source) {
+  const GLuint shader = gl.createShader(type);
+  const char* text = source.c_str();
+  gl.shaderSource(shader, 1, &text, nullptr);
+  gl.compileShader(shader);
+  GLint ok = GL_FALSE;
+  gl.getShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint length = 0;
+    gl.getShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::string log(size_t(std::max(length, 1)), '\0');
+    gl.getShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
+    gl.deleteShader(shader);
+    const char* kind = type == GL_VERTEX_SHADER ? "vertex" : "fragment";
+    throw std::runtime_error(std::string("vs-mesa: the per-pixel ") + kind + " shader does not compile:\n" +
+                             log.c_str());
+  }
+  return shader;
+}
+
+// The per-pixel program and its uniform locations (-1 for one the compiler dropped: glUniform
+// ignores it).
+struct PerPixelProgram {
+  GLuint program = 0;
+  GLint world = -1, normalMatrix = -1, eye = -1, ambient = -1, lightPosition = -1, lightAttenuation = -1,
+        lightSpot = -1, lightSpotExponent = -1, lightDiffuse = -1, lightSpecular = -1, specular = -1, blinn = -1,
+        shininess = -1, shadowMap = -1, shadowMatrix = -1, compareFail = -1;
+};
+
+PerPixelProgram buildPerPixelProgram(const GlFunctions& gl, int lightCount, bool shadowMapped) {
+  const GLuint vs = compileShader(gl, GL_VERTEX_SHADER, kVertexShader);
+  GLuint fs = 0;
+  try {
+    fs = compileShader(gl, GL_FRAGMENT_SHADER,
+                       "#version 120\n#define LIGHT_COUNT " + std::to_string(lightCount) + "\n#define SHADOW_MAPPED " +
+                           (shadowMapped ? "1" : "0") + "\n" + kFragmentShader);
+  } catch (...) {
+    gl.deleteShader(vs);
+    throw;
+  }
+  PerPixelProgram p;
+  p.program = gl.createProgram();
+  gl.attachShader(p.program, vs);
+  gl.attachShader(p.program, fs);
+  gl.linkProgram(p.program);
+  gl.deleteShader(vs);  // flagged only: deleted with the program
+  gl.deleteShader(fs);
+  GLint ok = GL_FALSE;
+  gl.getProgramiv(p.program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint length = 0;
+    gl.getProgramiv(p.program, GL_INFO_LOG_LENGTH, &length);
+    std::string log(size_t(std::max(length, 1)), '\0');
+    gl.getProgramInfoLog(p.program, GLsizei(log.size()), nullptr, log.data());
+    gl.deleteProgram(p.program);
+    throw std::runtime_error(std::string("vs-mesa: the per-pixel program does not link:\n") + log.c_str());
+  }
+  auto at = [&](const char* name) { return gl.getUniformLocation(p.program, name); };
+  p.world = at("world");
+  p.normalMatrix = at("normalMatrix");
+  p.eye = at("eye");
+  p.ambient = at("ambient");
+  p.lightPosition = at("lightPosition");
+  p.lightAttenuation = at("lightAttenuation");
+  p.lightSpot = at("lightSpot");
+  p.lightSpotExponent = at("lightSpotExponent");
+  p.lightDiffuse = at("lightDiffuse");
+  p.lightSpecular = at("lightSpecular");
+  p.specular = at("specular");
+  p.blinn = at("blinn");
+  p.shininess = at("shininess");
+  p.shadowMap = at("shadowMap");
+  p.shadowMatrix = at("shadowMatrix");
+  p.compareFail = at("compareFail");
+  return p;
+}
+
+void uniformMatrix(const GlFunctions& gl, GLint location, const glm::dmat4& m) {
+  const glm::mat4 f(m);
+  gl.uniformMatrix4fv(location, 1, GL_FALSE, &f[0][0]);  // column-major, like glm
+}
+
+void uniformMatrix(const GlFunctions& gl, GLint location, const glm::dmat3& m) {
+  const glm::mat3 f(m);
+  gl.uniformMatrix3fv(location, 1, GL_FALSE, &f[0][0]);
+}
+
+void uniformVec3(const GlFunctions& gl, GLint location, const glm::dvec3& v) {
+  gl.uniform3f(location, GLfloat(v.x), GLfloat(v.y), GLfloat(v.z));
+}
+
 // A mesh in vertex buffers (float, as a GL application would keep it): the render view with
 // normals for the scene passes, or positions only (the shadow mesh for the map pass).
 struct MeshBuffers {
@@ -212,7 +443,10 @@ Aabb sceneBounds(const std::vector<Instance>& instances) {
 struct MesaFrameRenderer::Impl {
   const Scene& scene;
   ShadowMethod method;
+  MesaLighting lighting;
   GlFunctions gl;
+  std::array<PerPixelProgram, kMaxLights + 1> programs;  // by number of lights
+  glm::dmat4 shadowMatrix{1.0};                          // T of the shadow-map camera pass, as given
   SceneView view;
   std::vector<Instance> instances;
   std::vector<MeshBuffers> render, shadow;  // per instance
@@ -221,7 +455,7 @@ struct MesaFrameRenderer::Impl {
   ShadowVolumeWorkspace workspace;
   GLuint mapTexture = 0, mapFramebuffer = 0;
 
-  Impl(const Scene& s, ShadowMethod m) : scene(s), method(m) {
+  Impl(const Scene& s, ShadowMethod m, MesaLighting shading) : scene(s), method(m), lighting(shading) {
     // An empty scenario of the scene's size: the harness creates that context and leaves it
     // current; every call below goes to it.
     conformance::Scenario empty;
@@ -242,6 +476,10 @@ struct MesaFrameRenderer::Impl {
     for (const Light& light : scene.lights)
       for (const Light& l : expandSoftLight(light)) lights.push_back(l);
     if (method == ShadowMethod::ShadowMap) createShadowMap();
+    // All nine now: a shader error is reported here, before any frame (an exception out of a frame
+    // left Mesa crashing in OSMesaDestroyContext at exit), and no frame pays for a compile.
+    if (lighting == MesaLighting::PerPixel)
+      for (int k = 0; k <= kMaxLights; ++k) buildProgram(k);
 
     glDisable(GL_DITHER);
     glShadeModel(GL_SMOOTH);
@@ -259,6 +497,8 @@ struct MesaFrameRenderer::Impl {
       }
     if (mapFramebuffer) gl.deleteFramebuffers(1, &mapFramebuffer);
     if (mapTexture) glDeleteTextures(1, &mapTexture);
+    for (const PerPixelProgram& p : programs)
+      if (p.program) gl.deleteProgram(p.program);
   }
 
   void createShadowMap() {
@@ -308,22 +548,113 @@ struct MesaFrameRenderer::Impl {
   }
 
   // drawLit of scene_passes.cpp: every instance lit by `lit` (those in range), ambient or not.
+  // Per pixel, the program draws every per-pixel material, and in the shadow-map camera pass every
+  // material (ShadowMappedShader lights per pixel whatever the material says).
   void drawLitPass(const RenderState& state, const std::vector<const Light*>& lit, bool includeAmbient) {
+    const bool shadowMapped = method == ShadowMethod::ShadowMap;
     glEnable(GL_LIGHTING);
     setGlobalAmbient(includeAmbient ? scene.ambient : glm::dvec3(0.0));
+    const PerPixelProgram* bound = nullptr;  // nullptr: fixed function
+    std::vector<const Light*> inRange;
     for (size_t i = 0; i < instances.size(); ++i) {
       const Instance& inst = instances[i];
-      loadMatrix(GL_MODELVIEW, view.view);
-      disableLights();
-      int slot = 0;
+      inRange.clear();
       for (const Light* l : lit)
-        if (withinRange(*l, inst.worldBounds) && slot < 8) setLight(slot++, *l);
-      if (!includeAmbient && slot == 0) continue;
-      setMaterial(scene.materials.at(size_t(inst.material)));
-      loadMatrix(GL_MODELVIEW, view.view * inst.world);
-      drawMesh(render[i], state, inst, true);
+        if (withinRange(*l, inst.worldBounds) && inRange.size() < size_t(kMaxLights)) inRange.push_back(l);
+      if (!includeAmbient && inRange.empty()) continue;
+      const Material& material = scene.materials.at(size_t(inst.material));
+      const bool programmed =
+          lighting == MesaLighting::PerPixel && (shadowMapped || material.shading == ShadingModel::PerPixel);
+      const PerPixelProgram* wanted = programmed ? &program(int(inRange.size())) : nullptr;
+      if (wanted != bound) {
+        gl.useProgram(wanted ? wanted->program : 0);
+        bound = wanted;
+      }
+      if (programmed) drawPerPixel(*bound, i, state, inRange, includeAmbient);
+      else drawFixedFunction(i, state, inRange);
     }
+    if (bound) gl.useProgram(0);
     glDisable(GL_LIGHTING);
+  }
+
+  // The per-pixel program for `lightCount` lights, with the uniforms that stay for the renderer's
+  // life: the camera, the sampler's unit, the compare-fail value.
+  void buildProgram(int lightCount) {
+    PerPixelProgram& p = programs.at(size_t(lightCount));
+    p = buildPerPixelProgram(gl, lightCount, method == ShadowMethod::ShadowMap);
+    gl.useProgram(p.program);
+    uniformVec3(gl, p.eye, view.eye);
+    gl.uniform1i(p.shadowMap, 0);  // texture unit 0
+    gl.uniform1f(p.compareFail, GLfloat(scene.shadow.compareFail));
+    uniformMatrix(gl, p.shadowMatrix, shadowMatrix);
+    gl.useProgram(0);
+  }
+
+  const PerPixelProgram& program(int lightCount) const { return programs.at(size_t(lightCount)); }
+
+  // T into every program, when it changed (the first frame: the light and the scene stay).
+  void setShadowMatrix(const glm::dmat4& t) {
+    if (t == shadowMatrix) return;
+    shadowMatrix = t;
+    for (const PerPixelProgram& p : programs) {
+      gl.useProgram(p.program);
+      uniformMatrix(gl, p.shadowMatrix, t);
+    }
+    gl.useProgram(0);
+  }
+
+  void drawFixedFunction(size_t i, const RenderState& state, const std::vector<const Light*>& inRange) {
+    const Instance& inst = instances[i];
+    loadMatrix(GL_MODELVIEW, view.view);
+    disableLights();
+    int slot = 0;
+    for (const Light* l : inRange) setLight(slot++, *l);
+    setMaterial(scene.materials.at(size_t(inst.material)));
+    loadMatrix(GL_MODELVIEW, view.view * inst.world);
+    drawMesh(render[i], state, inst, true);
+  }
+
+  // The uniforms of one draw: the instance's matrices, the ambient term and the lights' terms as
+  // drawLit gives them to PerPixelLightingShader (toPhongMaterial, toPhongLight, lightTerms).
+  void drawPerPixel(const PerPixelProgram& perPixel, size_t i, const RenderState& state,
+                    const std::vector<const Light*>& inRange, bool includeAmbient) {
+    const Instance& inst = instances[i];
+    const PhongMaterial material = toPhongMaterial(scene.materials.at(size_t(inst.material)));
+    uniformMatrix(gl, perPixel.world, inst.world);
+    uniformMatrix(gl, perPixel.normalMatrix, glm::transpose(glm::inverse(glm::dmat3(inst.world))));
+    uniformVec3(gl, perPixel.ambient, includeAmbient ? ambientTerm(material, scene.ambient) : glm::dvec3(0.0));
+    GLfloat position[4 * kMaxLights] = {}, attenuation[3 * kMaxLights] = {}, spot[4 * kMaxLights] = {},
+            exponent[kMaxLights] = {}, diffuse[3 * kMaxLights] = {}, specular[3 * kMaxLights] = {};
+    const int count = int(inRange.size());
+    for (int k = 0; k < count; ++k) {
+      const LightTerms t = lightTerms(toPhongLight(*inRange[size_t(k)]), material);
+      const glm::dvec4 p = t.directional ? glm::dvec4(t.direction, 0.0) : glm::dvec4(t.point, 1.0);
+      const glm::dvec4 sp = t.spot ? glm::dvec4(t.spotAxis, t.spotCosCutoff) : glm::dvec4(0.0, 0.0, 0.0, -2.0);
+      for (int c = 0; c < 4; ++c) {
+        position[4 * k + c] = GLfloat(p[c]);
+        spot[4 * k + c] = GLfloat(sp[c]);
+      }
+      for (int c = 0; c < 3; ++c) {
+        attenuation[3 * k + c] = GLfloat(t.attenuation[c]);
+        diffuse[3 * k + c] = GLfloat(t.diffuse[c]);
+        specular[3 * k + c] = GLfloat(t.specularColor[c]);
+      }
+      exponent[k] = GLfloat(t.spotExponent);
+    }
+    if (count > 0) {
+      gl.uniform4fv(perPixel.lightPosition, count, position);
+      gl.uniform3fv(perPixel.lightAttenuation, count, attenuation);
+      gl.uniform4fv(perPixel.lightSpot, count, spot);
+      gl.uniform1fv(perPixel.lightSpotExponent, count, exponent);
+      gl.uniform3fv(perPixel.lightDiffuse, count, diffuse);
+      gl.uniform3fv(perPixel.lightSpecular, count, specular);
+    }
+    // lightTerms' specular flag is the material's (ks != 0), the same for every light.
+    gl.uniform1i(perPixel.specular, material.specular != glm::dvec3(0.0) ? 1 : 0);
+    gl.uniform1i(perPixel.blinn, material.blinn ? 1 : 0);
+    gl.uniform1f(perPixel.shininess, GLfloat(material.shininess));
+    loadMatrix(GL_MODELVIEW, view.view * inst.world);  // ftransform()
+    drawMesh(render[i], state, inst, true);
   }
 
   void drawVolumeParts(const RenderState& state, const Instance& inst) {
@@ -423,6 +754,13 @@ struct MesaFrameRenderer::Impl {
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     loadMatrix(GL_PROJECTION, view.projection);
+    glBindTexture(GL_TEXTURE_2D, mapTexture);
+    if (lighting == MesaLighting::PerPixel) {
+      // The program does the lookup itself, with T as a uniform on its world position.
+      setShadowMatrix(textureMatrix(lv));
+      drawLitPass(camera, {&light}, true);
+      return;
+    }
     loadMatrix(GL_TEXTURE, textureMatrix(lv));
     loadMatrix(GL_MODELVIEW, view.view);
     const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
@@ -434,7 +772,6 @@ struct MesaFrameRenderer::Impl {
       glTexGendv(coords[k], GL_EYE_PLANE, plane);
       glEnable(gens[k]);
     }
-    glBindTexture(GL_TEXTURE_2D, mapTexture);
     glEnable(GL_TEXTURE_2D);
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
     drawLitPass(camera, {&light}, true);
@@ -444,8 +781,12 @@ struct MesaFrameRenderer::Impl {
   }
 };
 
-MesaFrameRenderer::MesaFrameRenderer(const Scene& scene, ShadowMethod method)
-    : impl_(std::make_unique<Impl>(scene, method)) {}
+const char* lightingName(MesaLighting lighting) {
+  return lighting == MesaLighting::PerPixel ? "perpixel" : "fixed";
+}
+
+MesaFrameRenderer::MesaFrameRenderer(const Scene& scene, ShadowMethod method, MesaLighting lighting)
+    : impl_(std::make_unique<Impl>(scene, method, lighting)) {}
 
 MesaFrameRenderer::~MesaFrameRenderer() = default;
 

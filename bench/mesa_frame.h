@@ -10,9 +10,20 @@
 //  - shadow maps (002 §3.1): the depth map from the light into a map_size² depth texture (a
 //    framebuffer object, polygon offset as the scene says), then one camera pass with
 //    ARB_shadow's depth compare, EYE_LINEAR texgen and the texture matrix T = bias · P · V.
-// Lighting is GL's fixed function, i.e. PER VERTEX (Gouraud), where shadowref's materials light
-// per pixel: Mesa does less work per fragment than shadowref here, which flatters Mesa. The
-// shadow-map compare-fail value is 0 (GL 2.1 without ARB_shadow_ambient), shadowref's 0.4.
+// Lighting, the MesaLighting choice:
+//  - FixedFunction: GL's fixed-function lighting, i.e. PER VERTEX (Gouraud), where shadowref's
+//    materials light per pixel: Mesa does less work per fragment than shadowref, which flatters
+//    Mesa. The shadow-map compare-fail value is 0 (GL 2.1 without ARB_shadow_ambient), shadowref's
+//    0.4.
+//  - PerPixel: a GLSL 1.20 program with shadowref's per-pixel Phong model (raster/lighting.h:
+//    normal renormalised per fragment, flipped on back faces, Phong or Blinn specular with pow), in
+//    float, with the light and material terms worked out by shadowref's own lightTerms; in the
+//    shadow-map camera pass it also does the depth compare (shadow2DProj on T · world position) and
+//    modulates by the scene's compare-fail value, as ShadowMappedShader does. Like for like with
+//    shadowref, up to float against double and rasterization ties (vs_mesa --agreement measures it).
+//    A Gouraud material in a volume frame stays fixed function (what shadowref's Gouraud does).
+//    One program per light count (0 to 8), all compiled in the constructor, as an application
+//    would specialise them: a loop to a uniform count made llvmpipe twice as slow.
 #pragma once
 
 #include <memory>
@@ -22,11 +33,17 @@
 
 namespace shadowref::bench {
 
+enum class MesaLighting { FixedFunction, PerPixel };
+
+const char* lightingName(MesaLighting lighting);
+
 class MesaFrameRenderer {
  public:
   // Creates (through the conformance harness) and makes current an OSMesa context of the scene's
-  // size. Throws std::runtime_error for a method or light type the GL side does not draw.
-  explicit MesaFrameRenderer(const Scene& scene, ShadowMethod method);
+  // size. Throws std::runtime_error for a method or light type the GL side does not draw, and for
+  // a shader that does not compile or link (with the info log).
+  explicit MesaFrameRenderer(const Scene& scene, ShadowMethod method,
+                             MesaLighting lighting = MesaLighting::FixedFunction);
   ~MesaFrameRenderer();
   MesaFrameRenderer(const MesaFrameRenderer&) = delete;
   MesaFrameRenderer& operator=(const MesaFrameRenderer&) = delete;

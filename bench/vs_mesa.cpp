@@ -8,9 +8,18 @@
 // round by round in A B C … C B A order, because llvmpipe's timings jump between runs; each run
 // reports the median of its frames, each configuration the median of its runs.
 //
+// Mesa runs twice over: with GL's fixed-function lighting (per vertex, less work per fragment than
+// shadowref does) and with a GLSL program that shades per pixel with shadowref's Phong model, the
+// like-for-like comparison (mesa_frame.h). How close each Mesa frame is to shadowref's (share of
+// pixels more than 2/255 apart, mean difference) is the last table of a whole run: it is what shows
+// the per-pixel columns like for like. --agreement prints only that table, --images DIR keeps its
+// frames as PNG.
+//
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]
+//   vs_mesa --agreement [--images DIR]
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
@@ -68,17 +77,30 @@ SceneCase cityCase(int houses, int lights) {
 
 enum class Engine { Shadowref, Llvmpipe, Softpipe };
 
+// Mesa's configurations come with fixed-function (per-vertex) or per-pixel lighting
+// (mesa_frame.h); shadowref always shades as the scene's materials say.
 struct Config {
   Engine engine;
   int threads;
-  std::string name() const {
-    const char* e = engine == Engine::Shadowref ? "shadowref" : engine == Engine::Llvmpipe ? "llvmpipe" : "softpipe";
-    return std::string(e) + "-" + std::to_string(threads) + "t";
-  }
-  const char* engineName() const {
+  MesaLighting lighting = MesaLighting::FixedFunction;
+  std::string name() const { return engineName() + "-" + std::to_string(threads) + "t"; }
+  const char* driverName() const {
     return engine == Engine::Shadowref ? "shadowref" : engine == Engine::Llvmpipe ? "llvmpipe" : "softpipe";
   }
+  // The CSV's engine column: "llvmpipe-perpixel" for the per-pixel Mesa runs.
+  std::string engineName() const {
+    return std::string(driverName()) + (lighting == MesaLighting::PerPixel ? "-perpixel" : "");
+  }
 };
+
+// VS_MESA_LIGHTING=perpixel selects Mesa's per-pixel program in a worker (set by runChild, or by
+// hand with VS_MESA_SNAPSHOT); fixed function otherwise.
+MesaLighting lightingFromEnvironment() {
+  const char* v = std::getenv("VS_MESA_LIGHTING");
+  if (!v || std::strcmp(v, "fixed") == 0) return MesaLighting::FixedFunction;
+  if (std::strcmp(v, "perpixel") == 0) return MesaLighting::PerPixel;
+  throw std::runtime_error(std::string("VS_MESA_LIGHTING is fixed or perpixel, not ") + v);
+}
 
 Scene loadCase(const SceneCase& c) {
   LoadOptions options;
@@ -122,10 +144,11 @@ int runWorker(const std::string& engine, int threads, int frames, const SceneCas
     if (snapshot) writePng(last->framebuffer, snapshot);
     std::printf("# shadowref %d threads\n", threads);
   } else {
-    MesaFrameRenderer mesa(scene, scene.shadow.method);
+    const MesaLighting lighting = lightingFromEnvironment();
+    MesaFrameRenderer mesa(scene, scene.shadow.method, lighting);
     timed([&] { mesa.render(); });
     if (snapshot) writePng(mesa.readColor(), snapshot);
-    std::printf("# %s\n", conformance::mesaRenderer().c_str());
+    std::printf("# %s\n", conformance::mesaRenderer().c_str());  // the lighting is in the engine's name
   }
   std::printf("W");
   for (double m : wallMs) std::printf(" %.4f", m);
@@ -163,7 +186,8 @@ RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
     cmd = "GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=" + std::to_string(cfg.threads) + " ";
   else if (cfg.engine == Engine::Softpipe)
     cmd = "GALLIUM_DRIVER=softpipe ";
-  cmd += quoted(selfPath()) + " --worker " + cfg.engineName() + " " + std::to_string(cfg.threads) + " " +
+  if (cfg.engine != Engine::Shadowref) cmd += std::string("VS_MESA_LIGHTING=") + lightingName(cfg.lighting) + " ";
+  cmd += quoted(selfPath()) + " --worker " + cfg.driverName() + " " + std::to_string(cfg.threads) + " " +
          std::to_string(frames) + " " + quoted(c.file);
   for (const std::string& o : c.overrides) cmd += " " + quoted(o);
   FILE* pipe = popen(cmd.c_str(), "r");
@@ -204,6 +228,8 @@ struct Settings {
   std::string csvPath = std::string(SHADOWREF_SOURCE_DIR) + "/bench/results/vs-mesa.csv";
   bool scaling = true;
   bool quick = false;
+  bool agreement = false;  // --agreement: the agreement table only, no timing
+  std::string imageDir;    // --images DIR: the agreement's frames as PNG
 };
 
 // Rounds of alternating runs: A B C … then … C B A, so slow drift hits every configuration alike.
@@ -272,6 +298,102 @@ bool checkDeterminism(const std::vector<SceneCase>& cases, std::ofstream& csv) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Agreement (--agreement): how far Mesa's frame is from shadowref's, per Mesa lighting, in the
+// 8-bit colour both end in. What is left with per-pixel lighting is float against double, the
+// rasterization of shared edges and the shadow-map texel ties; fixed function adds per-vertex
+// lighting and a compare-fail value of 0.
+
+// A colour channel as an 8-bit GL colour buffer holds it (writePng's rounding).
+int toByte(float c) { return c <= 0.0f ? 0 : c >= 1.0f ? 255 : int(std::round(double(c) * 255.0)); }
+
+struct Agreement {
+  double over2 = 0.0;    // share of the pixels with a channel more than 2/255 apart
+  size_t over2Pixels = 0;
+  double meanAbs = 0.0;  // mean |difference| over the R, G and B of every pixel, in 1/255
+  int maxAbs = 0;        // in 1/255
+};
+
+Agreement agreement(const Framebuffer& a, const Framebuffer& b) {
+  const std::vector<glm::vec4>& ca = a.color();
+  const std::vector<glm::vec4>& cb = b.color();
+  if (ca.size() != cb.size()) throw std::runtime_error("agreement: frames of different sizes");
+  Agreement r;
+  size_t over = 0;
+  double sum = 0.0;
+  for (size_t i = 0; i < ca.size(); ++i) {
+    int worst = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int d = std::abs(toByte(ca[i][k]) - toByte(cb[i][k]));
+      sum += d;
+      worst = std::max(worst, d);
+    }
+    over += worst > 2 ? 1 : 0;
+    r.maxAbs = std::max(r.maxAbs, worst);
+  }
+  r.over2Pixels = over;
+  r.over2 = ca.empty() ? 0.0 : double(over) / double(ca.size());
+  r.meanAbs = ca.empty() ? 0.0 : sum / double(3 * ca.size());
+  return r;
+}
+
+// Where two frames are more than 2/255 apart: red on a dimmed grey copy of `a`, to find the few.
+Framebuffer differenceImage(const Framebuffer& a, const Framebuffer& b) {
+  Framebuffer out = a;
+  for (size_t i = 0; i < out.color().size(); ++i) {
+    int worst = 0;
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(toByte(a.color()[i][k]) - toByte(b.color()[i][k])));
+    const float grey = 0.25f * (a.color()[i].r + a.color()[i].g + a.color()[i].b) / 3.0f;
+    out.color()[i] = worst > 2 ? glm::vec4(1.0f, 0.0f, 0.0f, 1.0f) : glm::vec4(grey, grey, grey, 1.0f);
+  }
+  return out;
+}
+
+// In this process: the Mesa driver is GALLIUM_DRIVER's (llvmpipe unless set), one context for all.
+// The driver runs it last, after every timed child, so its context's idle threads time nothing.
+// CSV rows (when given a file): the share in median_ms, the mean in min_ms, the largest in max_ms,
+// threads 0 (the driver picks its own).
+void agreementTable(const std::string& imageDir, std::ofstream* csv) {
+  setenv("GALLIUM_DRIVER", "llvmpipe", 0);
+  std::printf("\nAgreement with shadowref at 800x640: share of pixels with an RGB channel more than 2/255 apart,\n"
+              "mean and largest |difference| in 1/255, per Mesa lighting\n\n");
+  std::printf("%-15s | %17s %6s %4s | %17s %6s %4s\n", "scene", "fixed: >2/255", "mean", "max", "per pixel: >2/255",
+              "mean", "max");
+  std::string renderer;
+  for (const SceneCase& c : comparedScenes()) {
+    const Scene scene = loadCase(c);
+    FrameOptions options;
+    options.threads = 2;  // the same bits for every thread count
+    const FrameResult reference = renderFrame(scene, options);
+    if (!imageDir.empty()) writePng(reference.framebuffer, imageDir + "/" + c.label + "-shadowref.png");
+    std::printf("%-15s", c.label.c_str());
+    for (MesaLighting lighting : {MesaLighting::FixedFunction, MesaLighting::PerPixel}) {
+      MesaFrameRenderer mesa(scene, scene.shadow.method, lighting);
+      mesa.render();
+      const Framebuffer frame = mesa.readColor();
+      if (!imageDir.empty()) {
+        const std::string stem = imageDir + "/" + c.label + "-mesa-" + lightingName(lighting);
+        writePng(frame, stem + ".png");
+        writePng(differenceImage(reference.framebuffer, frame), stem + "-diff.png");
+      }
+      const Agreement a = agreement(reference.framebuffer, frame);
+      if (csv)
+        *csv << "agreement," << c.label << ',' << c.houses << ',' << c.lights << ','
+             << Config{Engine::Llvmpipe, 1, lighting}.engineName() << ",0,1," << a.over2 << ',' << a.meanAbs << ','
+             << a.maxAbs << ",,\"share > 2/255; mean, max |difference| in 1/255: " << conformance::mesaRenderer()
+             << "\"\n";
+      std::printf(" | %7.3f%% %8zu %6.3f %4d", 100.0 * a.over2, a.over2Pixels, a.meanAbs, a.maxAbs);
+    }
+    std::printf("\n");
+    std::fflush(stdout);
+    renderer = conformance::mesaRenderer();
+  }
+  std::printf("Mesa: %s\n", renderer.c_str());
+  if (!imageDir.empty())
+    std::printf("images: %s/<scene>-{shadowref,mesa-fixed,mesa-perpixel}.png, and -diff.png: red where > 2/255\n",
+                imageDir.c_str());
+}
+
+// ---------------------------------------------------------------------------------------------
 // Reports.
 
 std::string cpuModel() {
@@ -295,13 +417,18 @@ std::string loadAverage() {
 }
 
 void compareScenes(const Settings& s, std::ofstream& csv) {
+  const MesaLighting pp = MesaLighting::PerPixel;
   const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1},
-                                       {Engine::Llvmpipe, 2},  {Engine::Softpipe, 1}};
+                                       {Engine::Llvmpipe, 2},  {Engine::Softpipe, 1},  {Engine::Llvmpipe, 1, pp},
+                                       {Engine::Llvmpipe, 2, pp}, {Engine::Softpipe, 1, pp}};
   std::printf("\nTime per frame at 800x640, median of %d alternating runs of %d frames (softpipe %d), in ms;\n"
-              "ratios are speed ratios (Mesa's time / shadowref's time: above 1 shadowref is faster)\n\n",
+              "ratios are speed ratios (Mesa's time / shadowref's time: above 1 shadowref is faster).\n"
+              "llvm / soft: Mesa's fixed-function lighting (per vertex); llpp / sopp: Mesa's per-pixel program,\n"
+              "the shading shadowref does (like for like)\n\n",
               s.rounds, s.frames, std::max(1, s.frames / 3));
-  std::printf("%-16s %9s %9s %9s %9s %9s | %8s %8s %8s %8s\n", "scene", "sr-1t", "sr-2t", "llvm-1t", "llvm-2t",
-              "softpipe", "vsLlvm1", "vsLlvm2", "vsSoft", "sr 2t/1t");
+  std::printf("%-15s %7s %7s %7s %7s %8s %7s %7s %8s | %6s %6s %6s %6s %6s %6s %6s\n", "scene", "sr-1t", "sr-2t",
+              "llvm-1t", "llvm-2t", "softpipe", "llpp-1t", "llpp-2t", "sopp", "vsLl1", "vsLl2", "vsSoft", "vsLp1",
+              "vsLp2", "vsSopp", "sr2/1");
   std::string renderers;
   std::vector<std::vector<Measured>> all;
   for (const SceneCase& c : comparedScenes()) {
@@ -309,11 +436,14 @@ void compareScenes(const Settings& s, std::ofstream& csv) {
     all.push_back(m);
     for (size_t i = 0; i < configs.size(); ++i) csvRow(csv, "compare", c, configs[i], m[i]);
     const double sr1 = m[0].median(), sr2 = m[1].median(), ll1 = m[2].median(), ll2 = m[3].median(),
-                 soft = m[4].median();
-    std::printf("\r%-16s %9.2f %9.2f %9.2f %9.2f %9.1f | %8.3f %8.3f %8.2f %8.2f\n", c.label.c_str(), sr1, sr2, ll1,
-                ll2, soft, ll1 / sr1, ll2 / sr2, soft / sr1, sr1 / sr2);
-    std::printf("%-16s %9s %9s %9s %9s %9s   (lowest-highest run median)\n", "", range(m[0]).c_str(),
-                range(m[1]).c_str(), range(m[2]).c_str(), range(m[3]).c_str(), range(m[4]).c_str());
+                 soft = m[4].median(), lp1 = m[5].median(), lp2 = m[6].median(), sopp = m[7].median();
+    std::printf("\r%-15s %7.2f %7.2f %7.2f %7.2f %8.1f %7.2f %7.2f %8.1f | %6.3f %6.3f %6.2f %6.3f %6.3f %6.2f %6.2f\n",
+                c.label.c_str(), sr1, sr2, ll1, ll2, soft, lp1, lp2, sopp, ll1 / sr1, ll2 / sr2, soft / sr1, lp1 / sr1,
+                lp2 / sr2, sopp / sr1, sr1 / sr2);
+    std::printf("%-15s", "");
+    for (size_t i = 0; i < configs.size(); ++i)
+      std::printf(" %*s", configs[i].engine == Engine::Softpipe ? 8 : 7, range(m[i]).c_str());
+    std::printf("   (lowest-highest run median)\n");
     renderers = m[2].renderer + "; " + m[4].renderer;
     std::fflush(stdout);
   }
@@ -321,20 +451,24 @@ void compareScenes(const Settings& s, std::ofstream& csv) {
   // On a shared machine the wall clock carries other processes' load; the process CPU time of the
   // single-threaded runs does not (much), so it is the steadier comparison of work per frame.
   std::printf("\nCPU time per frame (whole process, all threads), ms; single-thread speed ratios\n\n");
-  std::printf("%-16s %9s %9s %9s %9s %9s | %8s %8s\n", "scene", "sr-1t", "sr-2t", "llvm-1t", "llvm-2t", "softpipe",
-              "vsLlvm1", "vsSoft");
+  std::printf("%-15s %7s %7s %7s %7s %8s %7s %7s %8s | %6s %6s %6s %6s\n", "scene", "sr-1t", "sr-2t", "llvm-1t",
+              "llvm-2t", "softpipe", "llpp-1t", "llpp-2t", "sopp", "vsLl1", "vsSoft", "vsLp1", "vsSopp");
   const std::vector<SceneCase> cases = comparedScenes();
   for (size_t k = 0; k < all.size(); ++k) {
     const std::vector<Measured>& m = all[k];
-    std::printf("%-16s %9.2f %9.2f %9.2f %9.2f %9.1f | %8.3f %8.2f\n", cases[k].label.c_str(), m[0].cpuMedian(),
-                m[1].cpuMedian(), m[2].cpuMedian(), m[3].cpuMedian(), m[4].cpuMedian(),
-                m[2].cpuMedian() / m[0].cpuMedian(), m[4].cpuMedian() / m[0].cpuMedian());
+    const double sr1 = m[0].cpuMedian();
+    std::printf("%-15s %7.2f %7.2f %7.2f %7.2f %8.1f %7.2f %7.2f %8.1f | %6.3f %6.2f %6.3f %6.2f\n",
+                cases[k].label.c_str(), sr1, m[1].cpuMedian(), m[2].cpuMedian(), m[3].cpuMedian(), m[4].cpuMedian(),
+                m[5].cpuMedian(), m[6].cpuMedian(), m[7].cpuMedian(), m[2].cpuMedian() / sr1, m[4].cpuMedian() / sr1,
+                m[5].cpuMedian() / sr1, m[7].cpuMedian() / sr1);
   }
   std::printf("load average after the runs: %s\n", loadAverage().c_str());
 }
 
 void scaling(const Settings& s, std::ofstream& csv) {
-  const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1}};
+  // llvmpipe both ways: per-pixel lighting costs per light and fragment, as shadowref's does.
+  const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1},
+                                       {Engine::Llvmpipe, 1, MesaLighting::PerPixel}};
   Settings fewer = s;
   fewer.rounds = std::max(1, s.rounds / 2 + 1);
   fewer.frames = std::max(1, s.frames / 2 + 1);
@@ -357,8 +491,8 @@ void scaling(const Settings& s, std::ofstream& csv) {
   for (const Series& ser : series) {
     std::printf("\n%s: ms per frame, median of %d alternating runs of %d frames\n", ser.title.c_str(), fewer.rounds,
                 fewer.frames);
-    std::printf("%8s %9s %9s %9s   %3s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "", "sr-1t",
-                "sr-2t", "llvm-1t");
+    std::printf("%8s %9s %9s %9s %9s   %3s %9s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "llpp-1t",
+                "", "sr-1t", "sr-2t", "llvm-1t", "llpp-1t");
     std::vector<std::vector<double>> y(configs.size()), yCpu(configs.size());
     for (size_t i = 0; i < ser.cases.size(); ++i) {
       const std::vector<Measured> m = measure(ser.cases[i], configs, fewer);
@@ -367,8 +501,8 @@ void scaling(const Settings& s, std::ofstream& csv) {
         y[k].push_back(m[k].median());
         yCpu[k].push_back(m[k].cpuMedian());
       }
-      std::printf("\r%8g %9.2f %9.2f %9.2f   cpu %9.2f %9.2f %9.2f\n", ser.x[i], y[0].back(), y[1].back(),
-                  y[2].back(), m[0].cpuMedian(), m[1].cpuMedian(), m[2].cpuMedian());
+      std::printf("\r%8g %9.2f %9.2f %9.2f %9.2f   cpu %9.2f %9.2f %9.2f %9.2f\n", ser.x[i], y[0].back(), y[1].back(),
+                  y[2].back(), y[3].back(), m[0].cpuMedian(), m[1].cpuMedian(), m[2].cpuMedian(), m[3].cpuMedian());
       std::fflush(stdout);
     }
     // Least-squares lines: R2 near 1 means the cost grows linearly.
@@ -429,6 +563,7 @@ int runDriver(const Settings& s) {
   std::printf("\navailable at the end: parallelism %.2f of 2, CPU share %.2f; load average %s\n", after.parallelism,
               after.cpuShare, loadAverage().c_str());
   csv << "probe,after,0,0,machine,2,1," << after.parallelism << ",,," << after.cpuShare << ",\"parallelism; cpu share\"\n";
+  agreementTable("", &csv);
   std::printf("\nCSV: %s\n", s.csvPath.c_str());
   return deterministic ? 0 : 1;
 }
@@ -457,10 +592,17 @@ int main(int argc, char** argv) {
       else if (a == "--csv") s.csvPath = next();
       else if (a == "--no-scaling") s.scaling = false;
       else if (a == "--quick") s.quick = true;
+      else if (a == "--agreement") s.agreement = true;
+      else if (a == "--images") s.imageDir = next();
       else {
-        std::fprintf(stderr, "usage: vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]\n");
+        std::fprintf(stderr, "usage: vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]\n"
+                             "       vs_mesa --agreement [--images DIR]\n");
         return 2;
       }
+    }
+    if (s.agreement) {
+      agreementTable(s.imageDir, nullptr);
+      return 0;
     }
     return runDriver(s);
   } catch (const std::exception& e) {

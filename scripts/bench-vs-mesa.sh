@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Issue 7's measurement in one command: installs what is missing and builds (scripts/setup.sh),
 # then runs bench/vs-mesa, which renders the same frames through OSMesa (softpipe, llvmpipe with
-# 1 and 2 threads) and shadowref (1 and 2 threads), checks that 1, 2 and 8 threads give identical
-# buffers, and times the city against houses and lights. Prints the tables and writes
+# 1 and 2 threads; each with GL's per-vertex fixed-function lighting and with a per-pixel program
+# shading as shadowref does) and shadowref (1 and 2 threads), checks that 1, 2 and 8 threads give
+# identical buffers, and times the city against houses and lights. Prints the tables and writes
 # bench/results/vs-mesa.csv. Takes a while (softpipe is slow); --quick for fewer runs.
 #   scripts/bench-vs-mesa.sh [BUILD_DIR] [--quick] [vs_mesa options: --rounds N --frames N --no-scaling]
 set -euo pipefail
