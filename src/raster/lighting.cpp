@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "raster/lighting_pow.h"
+
 namespace shadowref {
 
 glm::dvec3 ambientTerm(const PhongMaterial& m, const glm::dvec3& globalAmbient) {
@@ -46,7 +48,7 @@ glm::dvec3 lightContribution(const LightTerms& light, const glm::dvec3& p, const
     if (light.spot) {
       const double cosAngle = glm::dot(-l, light.spotAxis);
       if (cosAngle < light.spotCosCutoff) return glm::dvec3(0.0);
-      attenuation *= std::pow(std::max(cosAngle, 0.0), light.spotExponent);
+      attenuation *= lightingPow(std::max(cosAngle, 0.0), light.spotExponent);
     }
   }
   const double nDotL = glm::dot(n, l);
@@ -61,7 +63,7 @@ glm::dvec3 lightContribution(const LightTerms& light, const glm::dvec3& p, const
       const glm::dvec3 r = 2.0 * nDotL * n - l;  // reflection of L about N
       s = std::max(glm::dot(r, v), 0.0);
     }
-    color += light.specularColor * (light.shininess == 0.0 ? 1.0 : std::pow(s, light.shininess));
+    color += light.specularColor * lightingPow(s, light.shininess);  // 1 for shininess 0
   }
   return attenuation * color;
 }
@@ -120,18 +122,10 @@ inline v4d vmax0(v4d x) { return x < 0.0 ? splat(0.0) : x; }  // std::max(x, 0.0
 // glm's dot of two dvec3: (a.x * b.x + a.y * b.y) + a.z * b.z.
 inline v4d dot3(v4d ax, v4d ay, v4d az, v4d bx, v4d by, v4d bz) { return ax * bx + ay * by + az * bz; }
 
-// pow(s, n) for the specular term, without the call where its value is certain: pow(+0, n) is +0
-// for every n > 0 (C Annex F), and a reflection facing away from the eye gives s = +0 for about
-// a sixth of the lit fragments of the room.
-inline double specularPower(double s, double shininess) {
-  if (std::bit_cast<uint64_t>(s) == 0 && shininess > 0.0) return 0.0;
-  return std::pow(s, shininess);
-}
-
 // lightContribution for a batch, four fragments per step: its operations in the same order, with
 // both sides of every early return computed and the result selected (a lane the scalar code would
-// have left early gets +0.0, as the early return's zero vector). pow stays a scalar call per
-// fragment that needs it.
+// have left early gets +0.0, as the early return's zero vector). The powers are lightingPow's
+// four lanes, as the scalar code's are its lane 0.
 struct LightingColumns {
   static constexpr int kBlocks = (kMaxBatch + 3) / 4;
   int count = 0, blocks = 0;
@@ -193,9 +187,7 @@ struct LightingColumns {
       if (L.spot) {
         const v4d cosAngle = dot3(-lx, -ly, -lz, splat(L.spotAxis.x), splat(L.spotAxis.y), splat(L.spotAxis.z));
         lit &= ~(cosAngle < L.spotCosCutoff);
-        const v4d base = vmax0(cosAngle);
-        for (int lane = 0; lane < 4; ++lane)
-          if (lit[lane]) att[lane] *= std::pow(base[lane], L.spotExponent);
+        att *= lightingPow(vmax0(cosAngle), L.spotExponent);
       }
     }
     const v4d nDotL = dot3(nx[q], ny[q], nz[q], lx, ly, lz);
@@ -214,10 +206,7 @@ struct LightingColumns {
         const v4d twice = 2.0 * nDotL;
         s = vmax0(dot3(twice * nx[q] - lx, twice * ny[q] - ly, twice * nz[q] - lz, vx, vy, vz));
       }
-      v4d spec = splat(1.0);
-      if (L.shininess != 0.0)
-        for (int lane = 0; lane < 4; ++lane)
-          if (lit[lane]) spec[lane] = specularPower(s[lane], L.shininess);
+      const v4d spec = lightingPow(s, L.shininess);
       r += L.specularColor.x * spec;
       g += L.specularColor.y * spec;
       b += L.specularColor.z * spec;
