@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "raster/lighting_pow.h"
 
@@ -137,9 +138,13 @@ struct LightingColumns {
     for (int q = 0; q < blocks; ++q) {
       int k[4];
       for (int lane = 0; lane < 4; ++lane) k[lane] = std::min(4 * q + lane, count - 1);  // padded with a copy
+      const bool whole = 4 * q + 4 <= count;
       auto column = [&](int j) {
         const double* c = b.varyings[j];
-        return v4d{c[k[0]], c[k[1]], c[k[2]], c[k[3]]};
+        if (!whole) return v4d{c[k[0]], c[k[1]], c[k[2]], c[k[3]]};
+        v4d v;
+        std::memcpy(&v, c + 4 * q, sizeof v);
+        return v;
       };
       v4d p[3], n[3];
       for (int j = 0; j < 3; ++j) {
@@ -223,16 +228,23 @@ void lightContributions(const FragmentBatch& batch, const LightTerms& light, con
   if (batch.count > 0) LightingColumns(batch).contributions(light, eye, out);
 }
 
+// litColor for a batch: c = base, then c += each light's contribution in order, as litColor adds
+// them, but four fragments at a time in the lanes.
 void PerPixelLightingShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const {
   if (batch.count == 0) return;
   const LightingColumns columns(batch);
-  glm::dvec3 c[kMaxBatch], light[kMaxBatch];
-  for (int k = 0; k < batch.count; ++k) c[k] = base_;
-  for (const LightTerms& terms : terms_) {
-    columns.contributions(terms, eye_, light);
-    for (int k = 0; k < batch.count; ++k) c[k] += light[k];
+  for (int q = 0; q < columns.blocks; ++q) {
+    v4d r = {base_.x, base_.x, base_.x, base_.x}, g = {base_.y, base_.y, base_.y, base_.y},
+        b = {base_.z, base_.z, base_.z, base_.z};  // (not {} + x, which would turn -0 into +0)
+    for (const LightTerms& terms : terms_) {
+      v4d lr, lg, lb;
+      columns.block(terms, eye_, q, lr, lg, lb);
+      r += lr;
+      g += lg;
+      b += lb;
+    }
+    for (int lane = 0; lane < 4 && 4 * q + lane < batch.count; ++lane) out[4 * q + lane] = {r[lane], g[lane], b[lane], 1.0};
   }
-  for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(c[k], 1.0);
 }
 
 glm::dvec3 gouraudVertexColor(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n) {
