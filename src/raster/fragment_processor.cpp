@@ -23,8 +23,8 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   varyingCount_ = shader ? shader->varyingCount() : 0;
   depthLo_ = std::min(state.viewport.nearVal, state.viewport.farVal);
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
-  spanLoop_ = chooseSpanLoop();
   if (writesColor_) constantColor_ = shader->constantColor();
+  spanLoop_ = chooseSpanLoop();
 }
 
 double FragmentProcessor::fragmentDepth(const TriangleSetup& t, int x, int y) const {
@@ -174,6 +174,9 @@ bool wrapDelta(StencilOp op, uint8_t& delta) {
 }  // namespace
 
 FragmentProcessor::SpanLoop FragmentProcessor::chooseSpanLoop() const {
+  const bool allChannels = state_.colorMask[0] && state_.colorMask[1] && state_.colorMask[2] && state_.colorMask[3];
+  if (writesColor_ && constantColor_ && !usesStencil_ && !state_.blend.enabled && allChannels)
+    return SpanLoop::ConstantColor;
   if (writesColor_ || writesDepth_ || !usesStencil_) {
     return !writesColor_ && !usesStencil_ ? SpanLoop::DepthOnly : SpanLoop::General;
   }
@@ -303,6 +306,7 @@ void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& regi
   if (!watched) {
     if (spanLoop_ == SpanLoop::StencilCount) return countTriangle(t, region);
     if (spanLoop_ == SpanLoop::DepthOnly) return depthTriangle(t, region);
+    if (spanLoop_ == SpanLoop::ConstantColor) return constantColorTriangle(t, region);
   }
   rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { processSpan(t, y, xl, xr, e); });
 }
@@ -412,6 +416,42 @@ void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region
   });
   stats_.fragments += fragments;
   stats_.depthFailed += failed;
+}
+
+// One colour for every fragment that passes the depth test, and its depth when written: the
+// ambient pass of the shadow volumes (no stencil, no blending, every channel), eight pixels per
+// step. The colour is the one writeColors stores for a constant colour.
+void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect& region) {
+  uint32_t* const depth = usesDepth_ ? fb_.depthCodes().data() : nullptr;
+  glm::vec4* const color = fb_.color().data();
+  const glm::vec4 value = writeColor(glm::vec4(0.0f), *constantColor_, state_.colorMask);
+  uint64_t fragments = 0, failed = 0;
+  auto rows = [&](auto f, auto write) {
+    constexpr bool kWrite = decltype(write)::value;
+    depthTestRows<decltype(f)::value>(
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
+        [depth, color, value](size_t at, auto codes, auto stored, auto pass) {
+          using Codes = decltype(codes);
+          if constexpr (kWrite) {
+            const Codes next = pass ? codes : stored;
+            std::memcpy(depth + at, &next, sizeof next);
+          }
+          for (int lane = 0; lane < int(sizeof(Codes) / sizeof(uint32_t)); ++lane)
+            if (pass[lane]) color[at + size_t(lane)] = value;
+        },
+        [depth, color, value](size_t at, uint32_t code, bool pass) {
+          if (!pass) return;
+          if constexpr (kWrite) depth[at] = code;
+          color[at] = value;
+        });
+  };
+  withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
+    if (writesDepth_) rows(f, std::true_type{});
+    else rows(f, std::false_type{});
+  });
+  stats_.fragments += fragments;
+  stats_.depthFailed += failed;
+  stats_.colorWrites += fragments - failed;
 }
 
 // processImpl<false> for a chunk: every test and write per fragment in GL order; the fragments

@@ -48,7 +48,7 @@ class FragmentProcessor {
   void processSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
 
  private:
-  enum class SpanLoop : uint8_t { StencilCount, DepthOnly, General };
+  enum class SpanLoop : uint8_t { StencilCount, DepthOnly, ConstantColor, General };
   static constexpr int kChunk = 64;
   static_assert(kChunk <= kMaxBatch, "a chunk's survivors are shaded as one batch");
 
@@ -57,6 +57,7 @@ class FragmentProcessor {
   void depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const;
   void countTriangle(const TriangleSetup& t, const Rect& region);
   void depthTriangle(const TriangleSetup& t, const Rect& region);
+  void constantColorTriangle(const TriangleSetup& t, const Rect& region);
   void generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl, const int64_t e[3]);
   int testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors);
   int filterChunk(const StencilFaceState& face, size_t at, int n, const uint32_t* codes, int* survivors);

@@ -25,7 +25,8 @@ StencilOp randomOp(TestRandom& r, bool wrapOnly) {
 }
 
 // A state of one of the shapes the span loops distinguish (0 volume pass, 1 depth map, 3 colour
-// pass that only reads the stencil), or anything at all (2).
+// pass that only reads the stencil, 4 ambient pass: no stencil, no blending, every channel), or
+// anything at all (2).
 RenderState randomState(TestRandom& r, const Framebuffer& fb, int shape) {
   RenderState s = fullViewportState(fb);
   s.depthTest = r.below(5) != 0;
@@ -61,6 +62,10 @@ RenderState randomState(TestRandom& r, const Framebuffer& fb, int shape) {
   } else if (shape == 1) {  // a depth-map pass
     s.stencilTest = false;
     s.colorMask = {false, false, false, false};
+  } else if (shape == 4) {  // an ambient pass: one colour where the depth test passes
+    s.stencilTest = false;
+    s.blend.enabled = false;
+    s.colorMask = {true, true, true, true};
   } else if (shape == 3) {  // an ambient, lit or darken pass: the stencil only filters
     static const CompareFunc stencilFuncs[] = {CompareFunc::Equal, CompareFunc::NotEqual, CompareFunc::Always};
     static const CompareFunc depthFuncs[] = {CompareFunc::Less, CompareFunc::LEqual};
@@ -117,7 +122,7 @@ bool sameColor(const Framebuffer& a, const Framebuffer& b) {
 }  // namespace
 
 TEST_CASE("span loops leave the same bytes as the one-fragment path, in random states", "[raster][spans]") {
-  const int shape = GENERATE(0, 1, 2, 3);
+  const int shape = GENERATE(0, 1, 2, 3, 4);
   const DepthFormat format = GENERATE(DepthFormat::Float32, DepthFormat::Unorm24);
   for (uint64_t seed = 1; seed <= 12; ++seed) {
     INFO("shape " << shape << ", seed " << seed);
