@@ -93,9 +93,11 @@ PowLanes lightingPow(PowLanes x, double n) {
 
   // Special values, as C's pow has them: ±0, NaN, +inf; a negative x (never a lighting value)
   // goes to std::pow.
-  const double negativeZero = oddWhole(n) ? -0.0 : 0.0;
   const v4l zero = x == 0.0, passThrough = (x != x) | (x == INFINITY);
-  result = zero ? (bitsOf(x) < 0 ? splat(negativeZero) : splat(0.0)) : result;
+  if (zero[0] | zero[1] | zero[2] | zero[3]) {
+    const double negativeZero = oddWhole(n) ? -0.0 : 0.0;
+    result = zero ? (bitsOf(x) < 0 ? splat(negativeZero) : splat(0.0)) : result;
+  }
   result = passThrough ? x : result;
   const v4l negative = x < 0.0;
   if (negative[0] | negative[1] | negative[2] | negative[3])
