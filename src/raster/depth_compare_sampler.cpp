@@ -1,5 +1,7 @@
 #include "raster/depth_compare_sampler.h"
 
+#include "raster/compare_dispatch.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -114,16 +116,7 @@ void DepthCompareSampler::sampleDivided(const double* s, const double* t, const 
     }
     for (; k < count; ++k) out[k] = sampleDivided(s[k], t[k], r[k]);
   };
-  switch (func) {
-    case CompareFunc::Never: run(std::integral_constant<CompareFunc, CompareFunc::Never>{}); break;
-    case CompareFunc::Less: run(std::integral_constant<CompareFunc, CompareFunc::Less>{}); break;
-    case CompareFunc::Equal: run(std::integral_constant<CompareFunc, CompareFunc::Equal>{}); break;
-    case CompareFunc::LEqual: run(std::integral_constant<CompareFunc, CompareFunc::LEqual>{}); break;
-    case CompareFunc::Greater: run(std::integral_constant<CompareFunc, CompareFunc::Greater>{}); break;
-    case CompareFunc::NotEqual: run(std::integral_constant<CompareFunc, CompareFunc::NotEqual>{}); break;
-    case CompareFunc::GEqual: run(std::integral_constant<CompareFunc, CompareFunc::GEqual>{}); break;
-    case CompareFunc::Always: run(std::integral_constant<CompareFunc, CompareFunc::Always>{}); break;
-  }
+  withCompare(func, run);
 }
 
 double DepthCompareSampler::samplePcf(const glm::dvec4& strq, int k) const {
