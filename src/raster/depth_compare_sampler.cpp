@@ -1,11 +1,11 @@
 #include "raster/depth_compare_sampler.h"
 
-#include "raster/compare_dispatch.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <type_traits>
+#include <cstring>
+
+#include "raster/compare_dispatch.h"
 
 namespace shadowref {
 
@@ -101,18 +101,16 @@ void DepthCompareSampler::sampleDivided(const double* s, const double* t, const 
     int k = 0;
     for (; k + 4 <= count; k += 4) {
       v4d sv, tv, rv;
-      for (int lane = 0; lane < 4; ++lane) {
-        sv[lane] = s[k + lane];
-        tv[lane] = t[k + lane];
-        rv[lane] = r[k + lane];
-      }
+      std::memcpy(&sv, s + k, sizeof sv);
+      std::memcpy(&tv, t + k, sizeof tv);
+      std::memcpy(&rv, r + k, sizeof rv);
       const v4i x = nearestTexels(sv, texture->width), y = nearestTexels(tv, texture->height);
       // r clamped to [0, 1] as std::clamp does it (NaN passes through), then compared in float.
       const v4f rf = __builtin_convertvector(rv < 0.0 ? v4d{} : (1.0 < rv ? v4d{} + 1.0 : rv), v4f);
       v4f d;
       for (int lane = 0; lane < 4; ++lane) d[lane] = texture->at(x[lane], y[lane]);
       const v4d result = compare<F>(rf, d) ? v4d{} + 1.0 : v4d{} + failValue;
-      for (int lane = 0; lane < 4; ++lane) out[k + lane] = result[lane];
+      std::memcpy(out + k, &result, sizeof result);
     }
     for (; k < count; ++k) out[k] = sampleDivided(s[k], t[k], r[k]);
   };

@@ -1,7 +1,6 @@
 #include "raster/lighting.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>

@@ -1,5 +1,7 @@
 #include "shadow/shadow_lookup.h"
 
+#include <cstring>
+
 namespace shadowref {
 
 glm::dvec4 shadowCoordinates(const glm::dmat4& T, const glm::dvec3& worldPosition) {
@@ -33,22 +35,18 @@ void ShadowLookup::factors(const double* x, const double* y, const double* z, in
     const glm::dmat4& T = textureMatrix;
     for (; k + 4 <= count; k += 4) {
       v4d px, py, pz;
-      for (int lane = 0; lane < 4; ++lane) {
-        px[lane] = x[k + lane];
-        py[lane] = y[k + lane];
-        pz[lane] = z[k + lane];
-      }
+      std::memcpy(&px, x + k, sizeof px);
+      std::memcpy(&py, y + k, sizeof py);
+      std::memcpy(&pz, z + k, sizeof pz);
       // shadowCoordinates: glm's T * (p, 1) sums (c0·x + c1·y) + (c2·z + c3·1), row by row.
       auto row = [&](int i) { return (T[0][i] * px + T[1][i] * py) + (T[2][i] * pz + T[3][i] * 1.0); };
       const v4d s = row(0), t = row(1), q = row(3);
       const v4d r = row(2) - constantBias * q;  // withConstantBias
       const v4d sq = s / q, tq = t / q, rq = r / q;
-      for (int lane = 0; lane < 4; ++lane) {
-        divided[0][k + lane] = sq[lane];
-        divided[1][k + lane] = tq[lane];
-        divided[2][k + lane] = rq[lane];
-        behind[k + lane] = !(q[lane] > 0.0);
-      }
+      std::memcpy(divided[0] + k, &sq, sizeof sq);
+      std::memcpy(divided[1] + k, &tq, sizeof tq);
+      std::memcpy(divided[2] + k, &rq, sizeof rq);
+      for (int lane = 0; lane < 4; ++lane) behind[k + lane] = !(q[lane] > 0.0);
     }
     if (k > 0) sampler.sampleDivided(divided[0], divided[1], divided[2], k, out);
     for (int i = 0; i < k; ++i)
