@@ -17,4 +17,10 @@ void FragmentShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) con
   }
 }
 
+// shade() for every fragment: the four interpolated columns, copied.
+void ColorVaryingShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const {
+  const double *r = batch.varyings[0], *g = batch.varyings[1], *b = batch.varyings[2], *a = batch.varyings[3];
+  for (int k = 0; k < batch.count; ++k) out[k] = {r[k], g[k], b[k], a[k]};
+}
+
 }  // namespace shadowref

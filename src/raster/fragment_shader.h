@@ -49,6 +49,7 @@ class ColorVaryingShader final : public FragmentShader {
   glm::dvec4 shade(const FragmentInput& in) const override {
     return {in.varyings[0], in.varyings[1], in.varyings[2], in.varyings[3]};
   }
+  void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override;
 };
 
 // One colour for every fragment.

@@ -246,6 +246,13 @@ void PerPixelLightingShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* 
   }
 }
 
+// shade() for every fragment: the interpolated colour columns, copied.
+void GouraudShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const {
+  const double *r = batch.varyings[kVaryingColor], *g = batch.varyings[kVaryingColor + 1],
+               *b = batch.varyings[kVaryingColor + 2];
+  for (int k = 0; k < batch.count; ++k) out[k] = {r[k], g[k], b[k], 1.0};
+}
+
 glm::dvec3 gouraudVertexColor(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n) {
   return shadePoint(setup, p, n);
 }

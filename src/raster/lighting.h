@@ -105,6 +105,7 @@ class GouraudShader final : public FragmentShader {
   glm::dvec4 shade(const FragmentInput& in) const override {
     return {in.varyings[kVaryingColor], in.varyings[kVaryingColor + 1], in.varyings[kVaryingColor + 2], 1.0};
   }
+  void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override;
 };
 
 glm::dvec3 gouraudVertexColor(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n);

@@ -104,9 +104,10 @@ void drawInstance(Renderer& renderer, const RenderState& state, const PreparedIn
   call.state = &stateFor(state, *p.instance, mirrored);
   call.indices = p.indices;
   call.tag = drawTag(kind, p.index);
-  if (material.shading == ShadingModel::PerPixel && lighting.lights.empty()) {
-    // Ambient only: shadePoint returns the ambient term for every fragment, so the rasterizer is
-    // told it is a constant (same bits, no interpolation).
+  if (lighting.lights.empty()) {
+    // Ambient only: shadePoint returns the ambient term for every point, so the rasterizer is told
+    // it is a constant. Per pixel these are the same bits; for Gouraud every vertex has that
+    // colour, and the constant is the exact value its interpolation would round (no interpolation).
     keep.shaders.push_back(std::make_unique<ConstantColorShader>(
         glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0)));
     call.vertices = p.vertices;

@@ -198,3 +198,37 @@ TEST_CASE("per-pixel lighting of a batch gives each fragment the bits of shade()
     }
   }
 }
+
+TEST_CASE("the colour shaders' batch forms give shade()'s bits", "[raster][lighting]") {
+  // GouraudShader copies three interpolated columns with alpha 1, ColorVaryingShader four.
+  TestRandom r(77);
+  const GouraudShader gouraud;
+  const ColorVaryingShader rgba;
+  for (const FragmentShader* shader : {static_cast<const FragmentShader*>(&gouraud), static_cast<const FragmentShader*>(&rgba)}) {
+    FragmentBatch batch;
+    batch.count = 1 + r.below(kMaxBatch);
+    std::vector<int> xs(size_t(batch.count));
+    std::vector<double> depth(size_t(batch.count), 0.25);
+    std::vector<std::vector<double>> columns(4, std::vector<double>(size_t(batch.count)));
+    for (int k = 0; k < batch.count; ++k) {
+      xs[size_t(k)] = k;
+      for (int j = 0; j < 4; ++j) columns[size_t(j)][size_t(k)] = r.uniform(-0.5, 1.5);
+    }
+    columns[1][0] = -0.0;  // the sign of zero is kept
+    batch.x = xs.data();
+    batch.depth = depth.data();
+    for (int j = 0; j < 4; ++j) batch.varyings[j] = columns[size_t(j)].data();
+    std::vector<glm::dvec4> out(size_t(batch.count), glm::dvec4(-7.0));
+    shader->shadeBatch(batch, out.data());
+    for (int k = 0; k < batch.count; ++k) {
+      double v[4];
+      for (int j = 0; j < 4; ++j) v[j] = columns[size_t(j)][size_t(k)];
+      FragmentInput in;
+      in.x = k;
+      in.varyings = v;
+      const glm::dvec4 expected = shader->shade(in);
+      INFO("varyings " << shader->varyingCount() << ", fragment " << k);
+      for (int c = 0; c < 4; ++c) REQUIRE(std::bit_cast<uint64_t>(out[size_t(k)][c]) == std::bit_cast<uint64_t>(expected[c]));
+    }
+  }
+}
