@@ -8,11 +8,14 @@
 // round by round in A B C … C B A order, because llvmpipe's timings jump between runs; each run
 // reports the median of its frames, each configuration the median of its runs.
 //
-// Mesa runs twice over: with GL's fixed-function lighting (per vertex, less work per fragment than
-// shadowref does) and with a GLSL program that shades per pixel with shadowref's Phong model, the
-// like-for-like comparison (mesa_frame.h). How close each Mesa frame is to shadowref's (share of
-// pixels more than 2/255 apart, mean difference) is the last table of a whole run: it is what shows
-// the per-pixel columns like for like. --agreement prints only that table, --images DIR keeps its
+// Both run twice over, in two like-for-like pairs: Mesa with GL's fixed-function lighting (per
+// vertex) against shadowref with every material switched to Gouraud shading (the same lighting
+// equation per vertex, the colour interpolated), and Mesa with a GLSL program that shades per pixel
+// with shadowref's Phong model (mesa_frame.h) against shadowref as the scenes are written (per
+// pixel). The issue's own reference figures are fixed-function Mesa against per-pixel shadowref,
+// unequal work; that ratio is printed too. How close each Mesa frame is to its shadowref partner
+// (share of pixels more than 2/255 apart, mean difference) is the last table of a whole run: it is
+// what shows the pairs like for like. --agreement prints only that table, --images DIR keeps its
 // frames as PNG.
 //
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]
@@ -77,8 +80,9 @@ SceneCase cityCase(int houses, int lights) {
 
 enum class Engine { Shadowref, Llvmpipe, Softpipe };
 
-// Mesa's configurations come with fixed-function (per-vertex) or per-pixel lighting
-// (mesa_frame.h); shadowref always shades as the scene's materials say.
+// Every configuration lights per vertex or per pixel: Mesa with fixed-function lighting or its
+// per-pixel program (mesa_frame.h); shadowref with every material Gouraud-shaded or as the scene's
+// materials say (per pixel in every compared scene).
 struct Config {
   Engine engine;
   int threads;
@@ -87,11 +91,26 @@ struct Config {
   const char* driverName() const {
     return engine == Engine::Shadowref ? "shadowref" : engine == Engine::Llvmpipe ? "llvmpipe" : "softpipe";
   }
-  // The CSV's engine column: "llvmpipe-perpixel" for the per-pixel Mesa runs.
+  // The CSV's engine column: "llvmpipe-perpixel" for the per-pixel Mesa runs, "shadowref-gouraud"
+  // for shadowref per vertex ("shadowref" alone is the scenes' per-pixel shading, as before).
   std::string engineName() const {
+    if (engine == Engine::Shadowref) return lighting == MesaLighting::FixedFunction ? "shadowref-gouraud" : "shadowref";
     return std::string(driverName()) + (lighting == MesaLighting::PerPixel ? "-perpixel" : "");
   }
 };
+
+// Per vertex for shadowref: every material Gouraud-shaded, the work Mesa's fixed function does.
+void shadeGouraud(Scene& scene) {
+  for (Material& m : scene.materials) m.shading = ShadingModel::Gouraud;
+}
+
+// VS_SHADOWREF_SHADING=gouraud makes a shadowref worker shade per vertex (set by runChild).
+bool gouraudFromEnvironment() {
+  const char* v = std::getenv("VS_SHADOWREF_SHADING");
+  if (!v || std::strcmp(v, "scene") == 0) return false;
+  if (std::strcmp(v, "gouraud") == 0) return true;
+  throw std::runtime_error(std::string("VS_SHADOWREF_SHADING is scene or gouraud, not ") + v);
+}
 
 // VS_MESA_LIGHTING=perpixel selects Mesa's per-pixel program in a worker (set by runChild, or by
 // hand with VS_MESA_SNAPSHOT); fixed function otherwise.
@@ -122,7 +141,8 @@ int runWorker(const std::string& engine, int threads, int frames, const SceneCas
   // Mesa keeps its buffers from frame to frame; shadowref allocates them per frame and keeps the
   // freed memory (allocator_tuning.h). Set for both engines, so both run in the same process state.
   keepFreedMemoryForReuse();
-  const Scene scene = loadCase(c);
+  Scene scene = loadCase(c);
+  if (engine == "shadowref" && gouraudFromEnvironment()) shadeGouraud(scene);
   std::vector<double> wallMs, cpuMs;
   auto timed = [&](auto&& frame) {
     frame();  // warm-up: page in buffers, JIT llvmpipe's shaders
@@ -187,6 +207,7 @@ RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
   else if (cfg.engine == Engine::Softpipe)
     cmd = "GALLIUM_DRIVER=softpipe ";
   if (cfg.engine != Engine::Shadowref) cmd += std::string("VS_MESA_LIGHTING=") + lightingName(cfg.lighting) + " ";
+  else cmd += cfg.lighting == MesaLighting::FixedFunction ? "VS_SHADOWREF_SHADING=gouraud " : "VS_SHADOWREF_SHADING=scene ";
   cmd += quoted(selfPath()) + " --worker " + cfg.driverName() + " " + std::to_string(cfg.threads) + " " +
          std::to_string(frames) + " " + quoted(c.file);
   for (const std::string& o : c.overrides) cmd += " " + quoted(o);
@@ -298,10 +319,11 @@ bool checkDeterminism(const std::vector<SceneCase>& cases, std::ofstream& csv) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Agreement (--agreement): how far Mesa's frame is from shadowref's, per Mesa lighting, in the
-// 8-bit colour both end in. What is left with per-pixel lighting is float against double, the
-// rasterization of shared edges and the shadow-map texel ties; fixed function adds per-vertex
-// lighting and a compare-fail value of 0.
+// Agreement (--agreement): how far Mesa's frame is from its shadowref partner, per lighting, in
+// the 8-bit colour both end in: fixed function against shadowref Gouraud, the per-pixel program
+// against shadowref per pixel. What is left is float against double (per vertex: Mesa lights in
+// eye space, shadowref in world space), the rasterization of shared edges and the shadow-map texel
+// ties; fixed function adds a compare-fail value of 0.
 
 // A colour channel as an 8-bit GL colour buffer holds it (writePng's rounding).
 int toByte(float c) { return c <= 0.0f ? 0 : c >= 1.0f ? 255 : int(std::round(double(c) * 255.0)); }
@@ -355,18 +377,23 @@ Framebuffer differenceImage(const Framebuffer& a, const Framebuffer& b) {
 void agreementTable(const std::string& imageDir, std::ofstream* csv) {
   setenv("GALLIUM_DRIVER", "llvmpipe", 0);
   std::printf("\nAgreement with shadowref at 800x640: share of pixels with an RGB channel more than 2/255 apart,\n"
-              "mean and largest |difference| in 1/255, per Mesa lighting\n\n");
+              "mean and largest |difference| in 1/255; Mesa fixed function against shadowref Gouraud, Mesa per\n"
+              "pixel against shadowref per pixel\n\n");
   std::printf("%-15s | %17s %6s %4s | %17s %6s %4s\n", "scene", "fixed: >2/255", "mean", "max", "per pixel: >2/255",
               "mean", "max");
   std::string renderer;
   for (const SceneCase& c : comparedScenes()) {
     const Scene scene = loadCase(c);
+    Scene gouraud = scene;
+    shadeGouraud(gouraud);
     FrameOptions options;
     options.threads = 2;  // the same bits for every thread count
-    const FrameResult reference = renderFrame(scene, options);
-    if (!imageDir.empty()) writePng(reference.framebuffer, imageDir + "/" + c.label + "-shadowref.png");
     std::printf("%-15s", c.label.c_str());
     for (MesaLighting lighting : {MesaLighting::FixedFunction, MesaLighting::PerPixel}) {
+      const bool perVertex = lighting == MesaLighting::FixedFunction;
+      const FrameResult reference = renderFrame(perVertex ? gouraud : scene, options);
+      if (!imageDir.empty())
+        writePng(reference.framebuffer, imageDir + "/" + c.label + (perVertex ? "-shadowref-gouraud.png" : "-shadowref.png"));
       MesaFrameRenderer mesa(scene, scene.shadow.method, lighting);
       mesa.render();
       const Framebuffer frame = mesa.readColor();
@@ -389,7 +416,8 @@ void agreementTable(const std::string& imageDir, std::ofstream* csv) {
   }
   std::printf("Mesa: %s\n", renderer.c_str());
   if (!imageDir.empty())
-    std::printf("images: %s/<scene>-{shadowref,mesa-fixed,mesa-perpixel}.png, and -diff.png: red where > 2/255\n",
+    std::printf("images: %s/<scene>-{shadowref,shadowref-gouraud,mesa-fixed,mesa-perpixel}.png, and -diff.png: red\n"
+                "where > 2/255\n",
                 imageDir.c_str());
 }
 
@@ -416,59 +444,95 @@ std::string loadAverage() {
   return one + " " + five + " " + fifteen;
 }
 
-void compareScenes(const Settings& s, std::ofstream& csv) {
-  const MesaLighting pp = MesaLighting::PerPixel;
-  const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1},
-                                       {Engine::Llvmpipe, 2},  {Engine::Softpipe, 1},  {Engine::Llvmpipe, 1, pp},
-                                       {Engine::Llvmpipe, 2, pp}, {Engine::Softpipe, 1, pp}};
-  std::printf("\nTime per frame at 800x640, median of %d alternating runs of %d frames (softpipe %d), in ms;\n"
-              "ratios are speed ratios (Mesa's time / shadowref's time: above 1 shadowref is faster).\n"
-              "llvm / soft: Mesa's fixed-function lighting (per vertex); llpp / sopp: Mesa's per-pixel program,\n"
-              "the shading shadowref does (like for like)\n\n",
-              s.rounds, s.frames, std::max(1, s.frames / 3));
-  std::printf("%-15s %7s %7s %7s %7s %8s %7s %7s %8s | %6s %6s %6s %6s %6s %6s %6s\n", "scene", "sr-1t", "sr-2t",
-              "llvm-1t", "llvm-2t", "softpipe", "llpp-1t", "llpp-2t", "sopp", "vsLl1", "vsLl2", "vsSoft", "vsLp1",
-              "vsLp2", "vsSopp", "sr2/1");
-  std::string renderers;
-  std::vector<std::vector<Measured>> all;
-  for (const SceneCase& c : comparedScenes()) {
-    const std::vector<Measured> m = measure(c, configs, s);
-    all.push_back(m);
-    for (size_t i = 0; i < configs.size(); ++i) csvRow(csv, "compare", c, configs[i], m[i]);
-    const double sr1 = m[0].median(), sr2 = m[1].median(), ll1 = m[2].median(), ll2 = m[3].median(),
-                 soft = m[4].median(), lp1 = m[5].median(), lp2 = m[6].median(), sopp = m[7].median();
-    std::printf("\r%-15s %7.2f %7.2f %7.2f %7.2f %8.1f %7.2f %7.2f %8.1f | %6.3f %6.3f %6.2f %6.3f %6.3f %6.2f %6.2f\n",
-                c.label.c_str(), sr1, sr2, ll1, ll2, soft, lp1, lp2, sopp, ll1 / sr1, ll2 / sr2, soft / sr1, lp1 / sr1,
-                lp2 / sr2, sopp / sr1, sr1 / sr2);
-    std::printf("%-15s", "");
-    for (size_t i = 0; i < configs.size(); ++i)
-      std::printf(" %*s", configs[i].engine == Engine::Softpipe ? 8 : 7, range(m[i]).c_str());
-    std::printf("   (lowest-highest run median)\n");
-    renderers = m[2].renderer + "; " + m[4].renderer;
-    std::fflush(stdout);
-  }
-  std::printf("Mesa: %s\n", renderers.c_str());
-  // On a shared machine the wall clock carries other processes' load; the process CPU time of the
-  // single-threaded runs does not (much), so it is the steadier comparison of work per frame.
-  std::printf("\nCPU time per frame (whole process, all threads), ms; single-thread speed ratios\n\n");
-  std::printf("%-15s %7s %7s %7s %7s %8s %7s %7s %8s | %6s %6s %6s %6s\n", "scene", "sr-1t", "sr-2t", "llvm-1t",
-              "llvm-2t", "softpipe", "llpp-1t", "llpp-2t", "sopp", "vsLl1", "vsSoft", "vsLp1", "vsSopp");
-  const std::vector<SceneCase> cases = comparedScenes();
+// The configurations of compareScenes, in the order of its columns.
+enum Column { kSr1, kSr2, kLl1, kLl2, kSoft, kLp1, kLp2, kSopp, kSrg1, kSrg2, kColumns };
+
+std::vector<Config> comparedConfigs() {
+  const MesaLighting pp = MesaLighting::PerPixel, fixed = MesaLighting::FixedFunction;
+  return {{Engine::Shadowref, 1, pp}, {Engine::Shadowref, 2, pp}, {Engine::Llvmpipe, 1, fixed},
+          {Engine::Llvmpipe, 2, fixed}, {Engine::Softpipe, 1, fixed}, {Engine::Llvmpipe, 1, pp},
+          {Engine::Llvmpipe, 2, pp}, {Engine::Softpipe, 1, pp}, {Engine::Shadowref, 1, fixed},
+          {Engine::Shadowref, 2, fixed}};
+}
+
+// One like-for-like pair of a table: shadowref's 1- and 2-thread columns, Mesa's llvmpipe 1 and 2
+// threads and softpipe. Times are the medians of the runs, wall clock or CPU.
+struct PairColumns {
+  const char* title;
+  const char* names[5];
+  Column columns[5];
+  const char* ratios[3];  // llvmpipe 1 thread, 2 threads, softpipe against shadowref
+};
+
+void printPairTable(const PairColumns& p, const std::vector<SceneCase>& cases, const std::vector<std::vector<Measured>>& all,
+                    bool cpu) {
+  // CPU time: the 1-thread ratios only (a 2-thread process's CPU time includes its waiting threads).
+  std::printf("\n%s\n", p.title);
+  std::printf("%-15s %7s %7s %7s %7s %8s | %6s %6s %6s", "scene", p.names[0], p.names[1], p.names[2], p.names[3],
+              p.names[4], p.ratios[0], cpu ? "" : p.ratios[1], p.ratios[2]);
+  std::printf(cpu ? "\n" : " %6s\n", "sr2/1");
   for (size_t k = 0; k < all.size(); ++k) {
-    const std::vector<Measured>& m = all[k];
-    const double sr1 = m[0].cpuMedian();
-    std::printf("%-15s %7.2f %7.2f %7.2f %7.2f %8.1f %7.2f %7.2f %8.1f | %6.3f %6.2f %6.3f %6.2f\n",
-                cases[k].label.c_str(), sr1, m[1].cpuMedian(), m[2].cpuMedian(), m[3].cpuMedian(), m[4].cpuMedian(),
-                m[5].cpuMedian(), m[6].cpuMedian(), m[7].cpuMedian(), m[2].cpuMedian() / sr1, m[4].cpuMedian() / sr1,
-                m[5].cpuMedian() / sr1, m[7].cpuMedian() / sr1);
+    double t[5];
+    for (int i = 0; i < 5; ++i) {
+      const Measured& m = all[k][size_t(p.columns[i])];
+      t[i] = cpu ? m.cpuMedian() : m.median();
+    }
+    std::printf("%-15s %7.2f %7.2f %7.2f %7.2f %8.1f | %6.3f ", cases[k].label.c_str(), t[0], t[1], t[2], t[3], t[4],
+                t[2] / t[0]);
+    if (cpu) {
+      std::printf("%6s %6.2f\n", "", t[4] / t[0]);
+      continue;
+    }
+    std::printf("%6.3f %6.2f %6.2f\n", t[3] / t[1], t[4] / t[0], t[0] / t[1]);
+    std::printf("%-15s", "");
+    for (int i = 0; i < 5; ++i) std::printf(" %*s", i == 4 ? 8 : 7, range(all[k][size_t(p.columns[i])]).c_str());
+    std::printf("   (lowest-highest run median)\n");
   }
+}
+
+void compareScenes(const Settings& s, std::ofstream& csv) {
+  const std::vector<Config> configs = comparedConfigs();
+  const std::vector<SceneCase> cases = comparedScenes();
+  std::vector<std::vector<Measured>> all;
+  std::fprintf(stderr, "comparing");
+  for (const SceneCase& c : cases) {
+    all.push_back(measure(c, configs, s));
+    for (size_t i = 0; i < configs.size(); ++i) csvRow(csv, "compare", c, configs[i], all.back()[i]);
+  }
+  std::fprintf(stderr, "\n");
+  std::printf("\nTime per frame at 800x640, median of %d alternating runs of %d frames (softpipe %d), in ms;\n"
+              "ratios are speed ratios (Mesa's time / shadowref's time: above 1 shadowref is faster).\n",
+              s.rounds, s.frames, std::max(1, s.frames / 3));
+  const PairColumns perVertex{"Per vertex, like for like: shadowref with every material Gouraud-shaded (srg) against Mesa's\n"
+                              "fixed-function lighting (llvm, soft)",
+                              {"srg-1t", "srg-2t", "llvm-1t", "llvm-2t", "softpipe"},
+                              {kSrg1, kSrg2, kLl1, kLl2, kSoft},
+                              {"vsLl1", "vsLl2", "vsSoft"}};
+  const PairColumns perPixel{"Per pixel, like for like: shadowref as the scenes are written (sr) against Mesa's per-pixel\n"
+                             "program (llpp, sopp)",
+                             {"sr-1t", "sr-2t", "llpp-1t", "llpp-2t", "sopp"},
+                             {kSr1, kSr2, kLp1, kLp2, kSopp},
+                             {"vsLp1", "vsLp2", "vsSopp"}};
+  const PairColumns unequal{"Unequal work, the issue's reference figures: shadowref per pixel (sr) against Mesa's fixed\n"
+                            "function (per vertex: less work per fragment)",
+                            {"sr-1t", "sr-2t", "llvm-1t", "llvm-2t", "softpipe"},
+                            {kSr1, kSr2, kLl1, kLl2, kSoft},
+                            {"vsLl1", "vsLl2", "vsSoft"}};
+  for (const PairColumns* p : {&perVertex, &perPixel, &unequal}) printPairTable(*p, cases, all, false);
+  std::printf("Mesa: %s; %s\n", all.front()[kLl1].renderer.c_str(), all.front()[kSoft].renderer.c_str());
+  // On a shared machine the wall clock carries other processes' load; the process CPU time of the
+  // single-threaded runs does not (much), so it is the steadier comparison of work per frame (the
+  // 2-thread columns' CPU time includes the workers' waiting).
+  std::printf("\nCPU time per frame (whole process, all threads), ms; the 1-thread ratios are the steadier ones\n");
+  for (const PairColumns* p : {&perVertex, &perPixel}) printPairTable(*p, cases, all, true);
   std::printf("load average after the runs: %s\n", loadAverage().c_str());
 }
 
 void scaling(const Settings& s, std::ofstream& csv) {
   // llvmpipe both ways: per-pixel lighting costs per light and fragment, as shadowref's does.
-  const std::vector<Config> configs = {{Engine::Shadowref, 1}, {Engine::Shadowref, 2}, {Engine::Llvmpipe, 1},
-                                       {Engine::Llvmpipe, 1, MesaLighting::PerPixel}};
+  const MesaLighting pp = MesaLighting::PerPixel;
+  const std::vector<Config> configs = {{Engine::Shadowref, 1, pp}, {Engine::Shadowref, 2, pp}, {Engine::Llvmpipe, 1},
+                                       {Engine::Llvmpipe, 1, pp}};
   Settings fewer = s;
   fewer.rounds = std::max(1, s.rounds / 2 + 1);
   fewer.frames = std::max(1, s.frames / 2 + 1);
