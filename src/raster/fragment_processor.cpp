@@ -5,6 +5,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "raster/clamp_unit.h"
 #include "raster/compare_dispatch.h"
 #include "raster/fragment_ops.h"
 #include "raster/rasterizer.h"
@@ -617,8 +618,7 @@ void FragmentProcessor::writeColors(glm::vec4* color, const int* survivors, int 
   const bool allChannels = state_.colorMask[0] && state_.colorMask[1] && state_.colorMask[2] && state_.colorMask[3];
   auto source = [&](int k) -> const glm::dvec4& { return shaded ? shaded[k] : *constantColor_; };
   static_assert(sizeof(glm::dvec4) == sizeof(v4d) && sizeof(glm::vec4) == sizeof(v4f));
-  // std::clamp(c, 0.0, 1.0) per channel (NaN and -0.0 pass through unchanged), then float().
-  auto clamped = [](v4d c) { return 1.0 < (c < 0.0 ? v4d{} : c) ? v4d{} + 1.0 : (c < 0.0 ? v4d{} : c); };
+  auto clamped = [](v4d c) { return clampUnit(c); };
   auto load = [](const glm::dvec4& c) {
     v4d v;
     std::memcpy(&v, &c, sizeof v);

@@ -1,0 +1,34 @@
+// std::clamp(c, 0.0, 1.0) on four doubles at once: the colour clamp of blending and of every
+// colour write, in two instructions where the CPU has them.
+#pragma once
+
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace shadowref {
+
+using ClampLanes = double __attribute__((vector_size(32)));
+
+// c < 0 ? 0 : (1 < c ? 1 : c) per lane, as std::clamp: NaN and -0.0 pass through unchanged.
+// x86's MAXPD(a, b) is a > b ? a : b and MINPD(a, b) is a < b ? a : b, each the second operand
+// when unordered, so MAX(0, c) is c < 0 ? 0 : c and MIN(1, x) is 1 < x ? 1 : x, exactly.
+inline ClampLanes clampUnit(ClampLanes c) {
+#if defined(__AVX__)
+  return __m256d(_mm256_min_pd(_mm256_set1_pd(1.0), _mm256_max_pd(_mm256_setzero_pd(), __m256d(c))));
+#elif defined(__SSE2__)
+  __m128d half[2];
+  std::memcpy(half, &c, sizeof half);
+  for (__m128d& h : half) h = _mm_min_pd(_mm_set1_pd(1.0), _mm_max_pd(_mm_setzero_pd(), h));
+  ClampLanes out;
+  std::memcpy(&out, half, sizeof out);
+  return out;
+#else
+  const ClampLanes low = c < 0.0 ? ClampLanes{} : c;
+  return 1.0 < low ? ClampLanes{} + 1.0 : low;
+#endif
+}
+
+}  // namespace shadowref

@@ -1,0 +1,31 @@
+// clampUnit against std::clamp(c, 0.0, 1.0), bit for bit, on the values where a clamp written with
+// min and max could go wrong: NaN, both zeros, the bounds, infinities, subnormals.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "raster/clamp_unit.h"
+
+using namespace shadowref;
+
+TEST_CASE("clampUnit is std::clamp to [0, 1] in every lane, NaN and -0.0 included", "[raster][blend]") {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> values{0.0,  -0.0, 1.0,  -1.0, 0.5,  1.0000000000000002, 0.9999999999999999, 2.0,
+                                   -1e-300, 1e-310, -1e-310, inf, -inf, nan, -nan, 1e300};
+  for (size_t a = 0; a < values.size(); ++a) {
+    // Every value in every lane, beside its neighbours.
+    const ClampLanes in = {values[a], values[(a + 1) % values.size()], values[(a + 5) % values.size()],
+                           values[(a + 11) % values.size()]};
+    const ClampLanes out = clampUnit(in);
+    for (int lane = 0; lane < 4; ++lane) {
+      const double expected = std::clamp(in[lane], 0.0, 1.0);
+      INFO("input " << in[lane] << " (bits " << std::bit_cast<uint64_t>(in[lane]) << ")");
+      CHECK(std::bit_cast<uint64_t>(out[lane]) == std::bit_cast<uint64_t>(expected));
+    }
+  }
+}
