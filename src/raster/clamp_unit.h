@@ -1,5 +1,5 @@
-// std::clamp(c, 0.0, 1.0) on four doubles at once: the colour clamp of blending and of every
-// colour write, in two instructions where the CPU has them.
+// Clamps to [0, 1] on four doubles at once, in two instructions where the CPU has them: the colour
+// clamp of blending and of every colour write, and the depth encoder's.
 #pragma once
 
 #include <cstring>
@@ -28,6 +28,23 @@ inline ClampLanes clampUnit(ClampLanes c) {
 #else
   const ClampLanes low = c < 0.0 ? ClampLanes{} : c;
   return 1.0 < low ? ClampLanes{} + 1.0 : low;
+#endif
+}
+
+// z > 0 ? min(z, 1) : 0 per lane, as DepthCodec::encode clamps: NaN and -0.0 become +0.0.
+// MAXPD(z, 0) is z > 0 ? z : 0 (0 when unordered), then MIN(1, x) as above.
+inline ClampLanes clampUnitOrZero(ClampLanes z) {
+#if defined(__AVX__)
+  return __m256d(_mm256_min_pd(_mm256_set1_pd(1.0), _mm256_max_pd(__m256d(z), _mm256_setzero_pd())));
+#elif defined(__SSE2__)
+  __m128d half[2];
+  std::memcpy(half, &z, sizeof half);
+  for (__m128d& h : half) h = _mm_min_pd(_mm_set1_pd(1.0), _mm_max_pd(h, _mm_setzero_pd()));
+  ClampLanes out;
+  std::memcpy(&out, half, sizeof out);
+  return out;
+#else
+  return z > 0.0 ? (1.0 < z ? ClampLanes{} + 1.0 : z) : ClampLanes{};
 #endif
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "raster/clamp_unit.h"
 #include "raster/compare_dispatch.h"
 
 namespace shadowref {
@@ -106,7 +107,7 @@ void DepthCompareSampler::sampleDivided(const double* s, const double* t, const 
       std::memcpy(&rv, r + k, sizeof rv);
       const v4i x = nearestTexels(sv, texture->width), y = nearestTexels(tv, texture->height);
       // r clamped to [0, 1] as std::clamp does it (NaN passes through), then compared in float.
-      const v4f rf = __builtin_convertvector(rv < 0.0 ? v4d{} : (1.0 < rv ? v4d{} + 1.0 : rv), v4f);
+      const v4f rf = __builtin_convertvector(clampUnit(rv), v4f);
       v4f d;
       for (int lane = 0; lane < 4; ++lane) d[lane] = texture->at(x[lane], y[lane]);
       const v4d result = compare<F>(rf, d) ? v4d{} + 1.0 : v4d{} + failValue;

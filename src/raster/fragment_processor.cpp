@@ -235,8 +235,7 @@ struct RowDepth {
     if (clamp) z = z < lo ? v4d{} + lo : (hi < z ? v4d{} + hi : z);  // std::clamp
     v4u out;
     if (codec.format == DepthFormat::Float32) {
-      const v4d clamped = z > 0.0 ? (1.0 < z ? v4d{} + 1.0 : z) : v4d{};  // encode's clamp, NaN to 0
-      const v4f f = __builtin_convertvector(clamped, v4f);
+      const v4f f = __builtin_convertvector(clampUnitOrZero(z), v4f);  // encode's clamp
       std::memcpy(&out, &f, sizeof out);
     } else {
       for (int i = 0; i < 4; ++i) out[i] = codec.encode(z[i]);

@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include "raster/clamp_unit.h"
+#include "raster/framebuffer.h"
 
 using namespace shadowref;
 
@@ -26,6 +27,24 @@ TEST_CASE("clampUnit is std::clamp to [0, 1] in every lane, NaN and -0.0 include
       const double expected = std::clamp(in[lane], 0.0, 1.0);
       INFO("input " << in[lane] << " (bits " << std::bit_cast<uint64_t>(in[lane]) << ")");
       CHECK(std::bit_cast<uint64_t>(out[lane]) == std::bit_cast<uint64_t>(expected));
+    }
+  }
+}
+
+TEST_CASE("clampUnitOrZero clamps as the depth encoder does: NaN and -0.0 to +0.0", "[raster][depth]") {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> values{0.0, -0.0, 1.0, -1.0, 0.5, 1.0000000000000002, 0.9999999999999999, 1e-310,
+                                   -1e-310, inf, -inf, nan, -nan, 0.25};
+  const DepthCodec float32{DepthFormat::Float32};
+  for (size_t a = 0; a < values.size(); ++a) {
+    const ClampLanes in = {values[a], values[(a + 1) % values.size()], values[(a + 4) % values.size()],
+                           values[(a + 9) % values.size()]};
+    const ClampLanes out = clampUnitOrZero(in);
+    for (int lane = 0; lane < 4; ++lane) {
+      const double expected = in[lane] > 0.0 ? std::min(in[lane], 1.0) : 0.0;
+      INFO("input " << in[lane] << " (bits " << std::bit_cast<uint64_t>(in[lane]) << ")");
+      CHECK(std::bit_cast<uint64_t>(out[lane]) == std::bit_cast<uint64_t>(expected));
+      CHECK(std::bit_cast<uint32_t>(float(out[lane])) == float32.encode(in[lane]));
     }
   }
 }
