@@ -47,8 +47,10 @@ ThreadPool::~ThreadPool() {
 void ThreadPool::drain(uint32_t generation) {
   uint64_t ticket = ticket_.load(std::memory_order_acquire);
   for (;;) {
-    // count_ is read after the ticket of its run was seen, so it is that run's count.
-    if (uint32_t(ticket >> 32) != generation || int(ticket & 0xFFFFFFFFu) >= count_.load(std::memory_order_relaxed))
+    // count_ may already be the next run's (run() stores it after closing this run's tickets):
+    // then the claim below fails, because the acquire load saw that store and so the ticket
+    // stored before it.
+    if (uint32_t(ticket >> 32) != generation || int(ticket & 0xFFFFFFFFu) >= count_.load(std::memory_order_acquire))
       return;
     if (!ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel)) continue;
     // The claimed task belongs to this run, which cannot end before it is done: task_ is its.
@@ -102,14 +104,16 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
     if (error) std::rethrow_exception(error);
     return;
   }
-  // A worker late from an earlier run finds the ticket of another run and claims nothing; the
-  // release store of ticket_ publishes task_ and count_ to the workers that claim.
-  task_.store(&task, std::memory_order_relaxed);
-  count_.store(count, std::memory_order_relaxed);
-  done_.store(0, std::memory_order_relaxed);
+  // The new run's ticket goes first: a worker late from the last run, holding that run's last
+  // ticket, could otherwise pair it with this run's count_ and claim (and run) a task of this run
+  // that is then claimed again. Workers enter this run's drain only through generation_, whose
+  // store publishes task_, count_ and done_.
   const uint32_t generation = generation_.load(std::memory_order_relaxed) + 1;
-  ticket_.store(uint64_t(generation) << 32, std::memory_order_release);
-  generation_.store(generation);  // sequentially consistent: see waitForWork
+  ticket_.store(uint64_t(generation) << 32, std::memory_order_relaxed);
+  task_.store(&task, std::memory_order_relaxed);
+  done_.store(0, std::memory_order_relaxed);
+  count_.store(count, std::memory_order_release);  // after the ticket: see drain
+  generation_.store(generation);                    // sequentially consistent: see waitForWork
   if (sleepers_.load() > 0) {
     std::lock_guard lock(mutex_);
     wake_.notify_all();
