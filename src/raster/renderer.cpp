@@ -73,21 +73,27 @@ Rect drawRegion(const RenderState& state, const Framebuffer& fb) {
 
 void Renderer::addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
                         const RenderState& state, AssemblyWorkspace& ws) const {
-  TriangleSetup t;
-  if (!setupTriangle(a, b, c, facing, state, fb_.depthCodec(), t)) return;
-  ws.setups.push_back(t);
+  // Set up in place (a setup is a few hundred bytes), taken back if the triangle has no pixels.
+  if (!setupTriangle(a, b, c, facing, state, fb_.depthCodec(), ws.setups.emplace_back())) ws.setups.pop_back();
 }
 
 void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, const RenderState& state,
                                 const ClipPlanes& planes, int varyingCount, AssemblyWorkspace& ws) const {
   canonicalRotation(a, b, c);
   const ClipVertex* tri[3] = {a, b, c};
+  const VertexCorners& cached = corners_;
   bool inside = true;
-  for (const ClipVertex* v : tri) inside = inside && insideAllPlanes(v, 1, planes);
+  if (cached.base) {
+    for (const ClipVertex* v : tri) inside = inside && cached.inside[size_t(v - cached.base)];
+  } else {
+    for (const ClipVertex* v : tri) inside = inside && insideAllPlanes(v, 1, planes);
+  }
 
   if (inside) {
-    const WindowVertex wa = toWindow(*a, state.viewport), wb = toWindow(*b, state.viewport),
-                       wc = toWindow(*c, state.viewport);
+    auto window = [&](const ClipVertex* v) {
+      return cached.base ? cached.window[size_t(v - cached.base)] : toWindow(*v, state.viewport);
+    };
+    const WindowVertex wa = window(a), wb = window(b), wc = window(c);
     const int64_t area2 = signedArea2(wa, wb, wc);
     const Facing facing = facingOf(area2, state.frontFace);
     if (area2 == 0 || isCulled(facing, state.cull)) {
@@ -140,7 +146,44 @@ namespace {
 // Triangle assembly is split into chunks of this many triangles when there are threads; each
 // chunk's setups are appended in chunk order, so the list is the same as on one thread.
 constexpr size_t kAssemblyChunk = 128;
+// The vertices' clip tests and window transforms, in chunks of this many vertices on threads.
+constexpr size_t kCornerChunk = 1024;
 }  // namespace
+
+// An indexed mesh has about half as many vertices as triangles, and each triangle three corners:
+// the clip test and window transform of each vertex the draw uses, once (the same function of the
+// same vertex: the same bits). A volume's draws use part of their vertices each (a cap's near or
+// far ones), so the used ones are marked first.
+void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes) {
+  const size_t count = call.vertices.size();
+  corners_.base = nullptr;
+  if (call.indices.empty() || count > call.indices.size()) return;
+  if (corners_.window.size() < count) {  // grown only: resizing down and up would construct again
+    corners_.window.resize(count);
+    corners_.inside.resize(count);
+  }
+  uint8_t* const inside = corners_.inside.data();
+  std::fill_n(inside, count, uint8_t(2));  // 2: unused
+  for (const uint32_t i : call.indices)
+    if (i < count) inside[i] = 0;  // an index out of range throws in assembleRange
+  auto range = [&](size_t first, size_t last) {
+    for (size_t i = first; i < last; ++i) {
+      if (inside[i] == 2) continue;
+      const ClipVertex& v = call.vertices[i];
+      inside[i] = insideAllPlanes(&v, 1, planes);
+      if (inside[i]) corners_.window[i] = toWindow(v, call.state->viewport);  // toWindow needs w > 0
+    }
+  };
+  const size_t chunks = (count + kCornerChunk - 1) / kCornerChunk;
+  if (pool_ && chunks > 1) {
+    pool_->run(int(chunks), [&](int c) {
+      range(size_t(c) * kCornerChunk, std::min(count, size_t(c + 1) * kCornerChunk));
+    });
+  } else {
+    range(0, count);
+  }
+  corners_.base = call.vertices.data();
+}
 
 void Renderer::draw(const DrawCall& call) {
   const RenderState& state = *call.state;
@@ -163,6 +206,7 @@ void Renderer::draw(const DrawCall& call) {
   stats_.trianglesIn += triangleCount;
   const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
   if (assembly_.size() < chunks) assembly_.resize(chunks);
+  prepareCorners(call, planes);
   if (chunks == 1) {
     assembleRange(call, 0, triangleCount, planes, varyingCount, assembly_[0]);
   } else {
@@ -173,6 +217,7 @@ void Renderer::draw(const DrawCall& call) {
                     assembly_[size_t(c)]);
     });
   }
+  corners_.base = nullptr;
   PendingDraw pending;
   pending.first = pendingSetups_.size();
   for (size_t c = 0; c < chunks; ++c) {

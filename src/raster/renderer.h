@@ -79,6 +79,14 @@ class Renderer {
     std::vector<WindowVertex> windowPolygon;
     RasterStats stats;
   };
+  // What assembly needs of each vertex of an indexed draw, worked out once per vertex instead of
+  // once per triangle corner: whether it is inside every clip plane, and if so its window vertex.
+  struct VertexCorners {
+    std::vector<WindowVertex> window;
+    std::vector<uint8_t> inside;
+    const ClipVertex* base = nullptr;  // the draw's vertices; empty: work per corner
+  };
+  void prepareCorners(const DrawCall& call, const ClipPlanes& planes);
   void assembleRange(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes, int varyingCount,
                      AssemblyWorkspace& ws) const;
   void assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, const RenderState& state,
@@ -109,6 +117,7 @@ class Renderer {
   // Per-draw scratch, kept to avoid allocation per call: one assembly workspace per chunk of
   // triangles.
   std::vector<AssemblyWorkspace> assembly_;
+  VertexCorners corners_;
   // Draws waiting for rasterization, their setups in submission order, and the vertices clipping
   // made for them (WindowVertex::source points there; a deque keeps its elements in place when
   // it is moved).
