@@ -160,7 +160,10 @@ int runWorker(const std::string& engine, int threads, int frames, const SceneCas
     FrameOptions options;
     options.threads = threads;
     std::optional<FrameResult> last;
-    timed([&] { last = renderFrame(scene, options); });
+    timed([&] {
+      last.reset();  // one frame alive at a time, as Mesa keeps one set of buffers
+      last = renderFrame(scene, options);
+    });
     if (snapshot) writePng(last->framebuffer, snapshot);
     std::printf("# shadowref %d threads\n", threads);
   } else {
