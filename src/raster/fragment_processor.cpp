@@ -217,6 +217,9 @@ using BytesOf = std::conditional_t<sizeof(Codes) == sizeof(v8u), v8b, v4b>;
 // The depth codes of a row: fragmentDepth and DepthCodec::encode with the same operations in the
 // same order (planeDepthAt's sum split into its row part and its column part), four pixels at a
 // time or one. Float32 codes are made in vector lanes; Unorm24's rounding lane by lane.
+// kPlainFloat: a float32 buffer and no depth clamping (the usual case), fixed at compile time so
+// that the eight-pixel steps test neither.
+template <bool kPlainFloat>
 struct RowDepth {
   double z0, fx0, dzdx, rowPart, offset;
   const DepthCodec& codec;
@@ -232,9 +235,9 @@ struct RowDepth {
   // The codes of the four pixels whose centres' x are the lanes of cx.
   v4u codes4(v4d cx) const {
     v4d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
-    if (clamp) z = z < lo ? v4d{} + lo : (hi < z ? v4d{} + hi : z);  // std::clamp
+    if (!kPlainFloat && clamp) z = z < lo ? v4d{} + lo : (hi < z ? v4d{} + hi : z);  // std::clamp
     v4u out;
-    if (codec.format == DepthFormat::Float32) {
+    if (kPlainFloat || codec.format == DepthFormat::Float32) {
       const v4f f = __builtin_convertvector(clampUnitOrZero(z), v4f);  // encode's clamp
       std::memcpy(&out, &f, sizeof out);
     } else {
@@ -250,16 +253,39 @@ struct RowDepth {
   }
   uint32_t code(int x) const {
     double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
-    if (clamp) z = std::clamp(z, lo, hi);
+    if (!kPlainFloat && clamp) z = std::clamp(z, lo, hi);
     return codec.encode(z);
   }
 };
+
+bool plainFloatDepth(const DepthCodec& codec, bool depthClamp) {
+  return codec.format == DepthFormat::Float32 && !depthClamp;
+}
+
+// fn(std::true_type{}) or fn(std::false_type{}): a flag made a compile-time constant.
+template <class Fn>
+void withFlag(bool flag, Fn&& fn) {
+  if (flag) fn(std::true_type{});
+  else fn(std::false_type{});
+}
+
+// fn(compare, plain) with the depth function and plainFloatDepth as compile-time constants: what
+// depthTestRows is instantiated for.
+template <class Fn>
+void withRowKind(CompareFunc func, bool plain, Fn&& fn) {
+  withCompare(func, [&](auto f) { withFlag(plain, [&](auto p) { fn(f, p); }); });
+}
+// The same with the depth-write flag as a third constant: fn(compare, plain, write).
+template <class Fn>
+void withRowKind(CompareFunc func, bool plain, bool write, Fn&& fn) {
+  withRowKind(func, plain, [&](auto f, auto p) { withFlag(write, [&](auto w) { fn(f, p, w); }); });
+}
 
 }  // namespace
 
 // The depth codes of n pixels of a row (RowDepth).
 void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const {
-  const RowDepth row(t, y, fb_.depthCodec(), state_.depthClamp, depthLo_, depthHi_);
+  const RowDepth<false> row(t, y, fb_.depthCodec(), state_.depthClamp, depthLo_, depthHi_);
   int i = 0;
   for (; i + 4 <= n; i += 4) {
     const v4u four = row.codes4(x + i);
@@ -286,7 +312,7 @@ namespace {
 // block(at, codes, stored, pass) for each eight or four pixels from buffer index `at` (vectors of
 // codes: v8u or v4u), single(at, code, pass) for the last one to three of a row. Counts the
 // fragments and the failed depth tests. F = Always (no depth test) reads no depth.
-template <CompareFunc F, class Block, class Single>
+template <CompareFunc F, bool kPlainFloat, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
                    uint64_t& fragments, uint64_t& failed, Block&& block, Single&& single) {
   const uint32_t* const depth = fb.depthCodes().data();
@@ -295,7 +321,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   rasterizeRowSpans(t, region, [&, depth, width](int y, int xl, int xr) {
     const size_t at = size_t(y) * size_t(width) + size_t(xl);
     const int n = xr - xl + 1;
-    const RowDepth row(t, y, fb.depthCodec(), clamp, lo, hi);
+    const RowDepth<kPlainFloat> row(t, y, fb.depthCodec(), clamp, lo, hi);
     auto step = [&](auto codes, v4d cx, int i, auto& fails) {
       using Codes = decltype(codes);
       Codes stored{};
@@ -342,8 +368,9 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   wrapDelta(face.dpfail, onFail);
   uint8_t* const stencil = fb_.stencil().data();
   uint64_t fragments = 0, failed = 0;
-  withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
-    depthTestRows<decltype(f)::value>(
+  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, plainFloatDepth(fb_.depthCodec(), state_.depthClamp),
+              [&](auto f, auto plain) {
+    depthTestRows<decltype(f)::value, decltype(plain)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [stencil, onPass, onFail](size_t at, auto, auto, auto pass) {
           using Codes = decltype(pass);
@@ -366,8 +393,8 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
 void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region) {
   uint32_t* const depth = fb_.depthCodes().data();
   uint64_t fragments = 0, failed = 0;
-  auto rows = [&](auto f, auto write) {
-    depthTestRows<decltype(f)::value>(
+  auto rows = [&](auto f, auto plain, auto write) {
+    depthTestRows<decltype(f)::value, decltype(plain)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [depth](size_t at, auto codes, auto stored, auto pass) {
           if constexpr (decltype(write)::value) {
@@ -379,10 +406,8 @@ void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region
           if (decltype(write)::value && pass) depth[at] = code;
         });
   };
-  withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
-    if (writesDepth_) rows(f, std::true_type{});
-    else rows(f, std::false_type{});
-  });
+  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, plainFloatDepth(fb_.depthCodec(), state_.depthClamp),
+              writesDepth_, rows);
   stats_.fragments += fragments;
   stats_.depthFailed += failed;
 }
@@ -395,9 +420,9 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
   glm::vec4* const color = fb_.color().data();
   const glm::vec4 value = writeColor(glm::vec4(0.0f), *constantColor_, state_.colorMask);
   uint64_t fragments = 0, failed = 0;
-  auto rows = [&](auto f, auto write) {
+  auto rows = [&](auto f, auto plain, auto write) {
     constexpr bool kWrite = decltype(write)::value;
-    depthTestRows<decltype(f)::value>(
+    depthTestRows<decltype(f)::value, decltype(plain)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [depth, color, value](size_t at, auto codes, auto stored, auto pass) {
           using Codes = decltype(codes);
@@ -414,10 +439,8 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
           color[at] = value;
         });
   };
-  withCompare(usesDepth_ ? state_.depthFunc : CompareFunc::Always, [&](auto f) {
-    if (writesDepth_) rows(f, std::true_type{});
-    else rows(f, std::false_type{});
-  });
+  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, plainFloatDepth(fb_.depthCodec(), state_.depthClamp),
+              writesDepth_, rows);
   stats_.fragments += fragments;
   stats_.depthFailed += failed;
   stats_.colorWrites += fragments - failed;
