@@ -318,6 +318,8 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   const uint32_t* const depth = fb.depthCodes().data();
   const int width = fb.width();
   uint64_t rowsFragments = 0, rowsFailed = 0;  // locals: the loops keep them in registers
+  v8u fails8{};  // failed tests per lane, summed once per triangle rather than per row
+  v4u fails4{};
   rasterizeRowSpans(t, region, [&, depth, width](int y, int xl, int xr) {
     const size_t at = size_t(y) * size_t(width) + size_t(xl);
     const int n = xr - xl + 1;
@@ -333,16 +335,13 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
       block(at + size_t(i), codes, stored, pass);
     };
     int i = 0;
-    v8u fails8{};
     v4d cx = double(xl) + v4d{0.5, 1.5, 2.5, 3.5};  // exact: whole numbers + 0.5
     for (; i + 8 <= n; i += 8, cx += 8.0) step(v8u{}, cx, i, fails8);
-    v4u fails4{};
     if (i + 4 <= n) {
       step(v4u{}, cx, i, fails4);
       i += 4;
     }
-    uint64_t rowFails = fails4[0] + fails4[1] + fails4[2] + fails4[3];
-    for (int lane = 0; lane < 8; ++lane) rowFails += fails8[lane];
+    uint64_t rowFails = 0;
     for (; i < n; ++i) {
       const uint32_t code = row.code(xl + i);
       const bool pass = passes<F>(code, F == CompareFunc::Always ? code : depth[at + size_t(i)]);
@@ -352,6 +351,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     rowsFragments += uint64_t(n);
     rowsFailed += rowFails;
   });
+  for (int lane = 0; lane < 4; ++lane) rowsFailed += uint64_t(fails4[lane]) + fails8[lane] + fails8[lane + 4];
   fragments += rowsFragments;
   failed += rowsFailed;
 }
