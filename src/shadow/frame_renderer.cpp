@@ -35,7 +35,7 @@ class PassClock {
 void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResult& result, Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
   const std::vector<Instance> instances = scene.instances();
-  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view);
+  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &renderer);
   RenderState state;
   state.viewport = view.viewport;
   state.clipFar = !view.infinite;

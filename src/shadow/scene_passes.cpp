@@ -1,6 +1,7 @@
 #include "shadow/scene_passes.h"
 
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <memory>
 #include <numbers>
@@ -14,37 +15,62 @@ const RenderState& stateFor(const RenderState& state, const Instance& instance, 
   return scratch;
 }
 
-std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view) {
-  std::vector<PreparedInstance> out;
-  out.reserve(instances.size());
+namespace {
+
+// Vertices [first, last) of a prepared instance: clip position, world position and normal.
+void prepareVertices(PreparedInstance& p, const glm::dmat3& normalMatrix, size_t first, size_t last) {
+  const Instance& inst = *p.instance;
+  const Mesh& mesh = *inst.mesh;
+  for (size_t v = first; v < last; ++v) {
+    const glm::dvec4 object(mesh.positions[v], 1.0);
+    ClipVertex& cv = p.vertices[v];
+    cv.position = p.transform.toClip(object);
+    const glm::dvec3 world = glm::dvec3(inst.world * object);
+    const glm::dvec3 normal = glm::normalize(normalMatrix * mesh.normals[v]);
+    for (int k = 0; k < 3; ++k) {
+      cv.varyings[kVaryingPosition + k] = world[k];
+      cv.varyings[kVaryingNormal + k] = normal[k];
+    }
+  }
+}
+
+// Vertices are prepared in ranges of this many, the ranges of all instances shared by the threads.
+constexpr size_t kVertexRange = 2048;
+
+}  // namespace
+
+std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
+                                               Renderer* renderer) {
+  std::vector<PreparedInstance> out(instances.size());
+  std::vector<glm::dmat3> normalMatrices(instances.size());
+  struct Range {
+    size_t instance, first, last;
+  };
+  std::vector<Range> ranges;
   for (size_t i = 0; i < instances.size(); ++i) {
     const Instance& inst = instances[i];
-    PreparedInstance p;
+    PreparedInstance& p = out[i];
     p.instance = &inst;
     p.index = int(i);
     p.transform.modelView = view.view * inst.world;
     p.transform.projection = view.projection;
-    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(inst.world)));
+    normalMatrices[i] = glm::transpose(glm::inverse(glm::dmat3(inst.world)));
     const Mesh& mesh = *inst.mesh;
     p.vertices.resize(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      const glm::dvec4 object(mesh.positions[v], 1.0);
-      ClipVertex& cv = p.vertices[v];
-      cv.position = p.transform.toClip(object);
-      const glm::dvec3 world = glm::dvec3(inst.world * object);
-      const glm::dvec3 normal = glm::normalize(normalMatrix * mesh.normals[v]);
-      for (int k = 0; k < 3; ++k) {
-        cv.varyings[kVaryingPosition + k] = world[k];
-        cv.varyings[kVaryingNormal + k] = normal[k];
-      }
-    }
-    p.indices.reserve(mesh.triangles.size() * 3);
-    for (const glm::uvec3& t : mesh.triangles) {
-      p.indices.push_back(t.x);
-      p.indices.push_back(t.y);
-      p.indices.push_back(t.z);
-    }
-    out.push_back(std::move(p));
+    for (size_t first = 0; first < mesh.positions.size(); first += kVertexRange)
+      ranges.push_back({i, first, std::min(mesh.positions.size(), first + kVertexRange)});
+    static_assert(sizeof(glm::uvec3) == 3 * sizeof(uint32_t));  // the triangles are the index list
+    p.indices.resize(mesh.triangles.size() * 3);
+    std::memcpy(p.indices.data(), mesh.triangles.data(), p.indices.size() * sizeof(uint32_t));
+  }
+  auto prepare = [&](int r) {
+    const Range& range = ranges[size_t(r)];
+    prepareVertices(out[range.instance], normalMatrices[range.instance], range.first, range.last);
+  };
+  if (renderer) {
+    renderer->parallelFor(int(ranges.size()), prepare);
+  } else {
+    for (size_t r = 0; r < ranges.size(); ++r) prepare(int(r));
   }
   return out;
 }

@@ -30,7 +30,10 @@ struct PreparedInstance {
 // flipped, so facing, culling and two-sided stencil see the faces they would unmirrored.
 const RenderState& stateFor(const RenderState& state, const Instance& instance, RenderState& scratch);
 
-std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view);
+// Every instance's vertices transformed for `view`; on the renderer's threads when one is given
+// (in ranges of vertices: the same bits, each vertex by itself).
+std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
+                                               Renderer* renderer = nullptr);
 
 PhongLight toPhongLight(const Light& light);
 PhongMaterial toPhongMaterial(const Material& material);

@@ -150,7 +150,7 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
                       Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
   const std::vector<Instance> instances = scene.instances();
-  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view);
+  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &renderer);
   Framebuffer& fb = renderer.framebuffer();
   const bool trapezoidal = method == ShadowMethod::Trapezoidal;
 
