@@ -336,7 +336,9 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     };
     int i = 0;
     v4d cx = double(xl) + v4d{0.5, 1.5, 2.5, 3.5};  // exact: whole numbers + 0.5
-    for (; i + 8 <= n; i += 8, cx += 8.0) step(v8u{}, cx, i, fails8);
+    v8u rowFails8{};  // in a register through the row; the triangle's sum is in memory
+    for (; i + 8 <= n; i += 8, cx += 8.0) step(v8u{}, cx, i, rowFails8);
+    fails8 += rowFails8;
     if (i + 4 <= n) {
       step(v4u{}, cx, i, fails4);
       i += 4;
@@ -368,15 +370,20 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   wrapDelta(face.dpfail, onFail);
   uint8_t* const stencil = fb_.stencil().data();
   uint64_t fragments = 0, failed = 0;
+  // The deltas in every lane, made once: the stencil stores are byte stores, which may alias
+  // anything, so a delta read from a byte would be read and broadcast again at every step.
+  const v8u passDelta8 = v8u{} + onPass, failDelta8 = v8u{} + onFail;
+  const v4u passDelta4 = v4u{} + onPass, failDelta4 = v4u{} + onFail;
   withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, plainFloatDepth(fb_.depthCodec(), state_.depthClamp),
               [&](auto f, auto plain) {
     depthTestRows<decltype(f)::value, decltype(plain)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
-        [stencil, onPass, onFail](size_t at, auto, auto, auto pass) {
+        [stencil, passDelta8, failDelta8, passDelta4, failDelta4](size_t at, auto, auto, auto pass) {
           using Codes = decltype(pass);
           BytesOf<Codes> bytes;
           std::memcpy(&bytes, stencil + at, sizeof bytes);
-          bytes += lowBytes(pass ? Codes{} + onPass : Codes{} + onFail);
+          if constexpr (sizeof(Codes) == sizeof(v8u)) bytes += lowBytes(pass ? passDelta8 : failDelta8);
+          else bytes += lowBytes(pass ? passDelta4 : failDelta4);
           std::memcpy(stencil + at, &bytes, sizeof bytes);
         },
         [stencil, onPass, onFail](size_t at, uint32_t, bool pass) {
