@@ -1,9 +1,14 @@
 #include "raster/fragment_processor.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstring>
 #include <type_traits>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include "raster/clamp_unit.h"
 #include "raster/compare_dispatch.h"
@@ -523,6 +528,45 @@ void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n
   writeColors(color, survivors, survived, shaded);
 }
 
+namespace {
+
+// The lanes set in a mask (all ones or all zeros per lane) as four bits.
+inline unsigned laneBits(v4u mask) {
+#if defined(__SSE2__)
+  __m128 m;
+  std::memcpy(&m, &mask, sizeof m);
+  return unsigned(_mm_movemask_ps(m));
+#else
+  return (mask[0] & 1u) | (mask[1] & 2u) | (mask[2] & 4u) | (mask[3] & 8u);
+#endif
+}
+
+// For each 4-bit mask, the lanes whose bits are set, in order (the rest 0).
+constexpr std::array<std::array<int, 4>, 16> kSetLanes = [] {
+  std::array<std::array<int, 4>, 16> table{};
+  for (unsigned m = 0; m < 16; ++m) {
+    int k = 0;
+    for (int lane = 0; lane < 4; ++lane)
+      if (m & (1u << lane)) table[m][size_t(k++)] = lane;
+  }
+  return table;
+}();
+
+// Appends first + lane for each set lane of `mask` to survivors[count...]; returns the new count.
+// Writes four entries whatever the mask: the caller's array has them (count <= first, and
+// first + 4 <= its size).
+inline int appendLanes(v4u mask, int first, int* survivors, int count) {
+  const unsigned bits = laneBits(mask);
+  using v4i = int __attribute__((vector_size(16)));
+  v4i lanes;
+  std::memcpy(&lanes, kSetLanes[bits].data(), sizeof lanes);
+  lanes += first;
+  std::memcpy(survivors + count, &lanes, sizeof lanes);
+  return count + std::popcount(bits);
+}
+
+}  // namespace
+
 // testChunk for the states of the colour passes, where no stencil value can change (stencil
 // unused, or every op KEEP, or a zero write mask) and the functions are the usual ones: the tests
 // as lane masks, four pixels per step. Returns -1 for any other state.
@@ -545,6 +589,7 @@ int FragmentProcessor::filterChunk(const StencilFaceState& sface, size_t at, int
   auto run = [&](auto sf, auto df) {
     constexpr CompareFunc SF = decltype(sf)::value, DF = decltype(df)::value;
     int i = 0;
+    v4u stencilFails{}, depthFails{};  // per lane, summed after the loop
     for (; i + 4 <= n; i += 4) {
       v4u sPass = v4u{} - 1, dPass = v4u{} - 1;
       if constexpr (SF != CompareFunc::Always) {
@@ -563,13 +608,13 @@ int FragmentProcessor::filterChunk(const StencilFaceState& sface, size_t at, int
         const v4u next = both ? code : stored;
         std::memcpy(depth + i, &next, sizeof next);
       }
-      const v4u sFail = ~sPass & 1u, dFail = sPass & ~dPass & 1u;
-      stencilFailed += sFail[0] + sFail[1] + sFail[2] + sFail[3];
-      depthFailed += dFail[0] + dFail[1] + dFail[2] + dFail[3];
-      for (int lane = 0; lane < 4; ++lane) {
-        survivors[survived] = i + lane;
-        survived += int(both[lane] & 1u);
-      }
+      stencilFails += ~sPass & 1u;
+      depthFails += sPass & ~dPass & 1u;
+      survived = appendLanes(both, i, survivors, survived);
+    }
+    for (int lane = 0; lane < 4; ++lane) {
+      stencilFailed += stencilFails[lane];
+      depthFailed += depthFails[lane];
     }
     for (; i < n; ++i) {
       if (!passes<SF>(ref, uint32_t(SF == CompareFunc::Always ? 0 : stencil[i]) & mask)) {
