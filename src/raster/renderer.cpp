@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -206,6 +207,10 @@ void Renderer::draw(const DrawCall& call) {
   const size_t triangleCount = call.indices.empty() ? call.vertices.size() / 3 : call.indices.size() / 3;
   stats_.trianglesIn += triangleCount;
   const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
+  if (pool_ && chunks == 1 && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1) {
+    queueAssembly(call, planes, varyingCount);
+    return;
+  }
   if (assembly_.size() < chunks) assembly_.resize(chunks);
   prepareCorners(call, planes);
   if (chunks == 1) {
@@ -220,9 +225,20 @@ void Renderer::draw(const DrawCall& call) {
   }
   corners_.base = nullptr;
   PendingDraw pending;
+  pending.region = drawRegion(state, fb_);
+  pending.state = state;
+  pending.shader = call.shader;
+  pending.watch = watch_;
+  if (collectSetups(std::span(assembly_.data(), chunks), pending)) pending_.push_back(pending);
+  if (deferDepth_ == 0) flush();
+}
+
+// Moves the setups the workspaces assembled into the pending lists, counts them, and fills in
+// the rows `pending` touches; false when it has nothing to rasterize (no setups, or none meets its
+// region), as a draw outside the framebuffer or culled whole.
+bool Renderer::collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending) {
   pending.first = pendingSetups_.size();
-  for (size_t c = 0; c < chunks; ++c) {
-    AssemblyWorkspace& ws = assembly_[c];
+  for (AssemblyWorkspace& ws : workspaces) {
     // The chunk's setups move as a block (no copy: 27k pumpkin triangles are 8 MB a pass); the
     // pending list points into it.
     for (const TriangleSetup& t : ws.setups) pendingSetups_.push_back(&t);
@@ -237,22 +253,55 @@ void Renderer::draw(const DrawCall& call) {
   }
   pending.count = pendingSetups_.size() - pending.first;
   stats_.trianglesRasterized += pending.count;
-
-  pending.region = drawRegion(state, fb_);
-  if (pending.region.width > 0 && pending.region.height > 0 && pending.count > 0) {
-    pending.state = state;
-    pending.shader = call.shader;
-    pending.watch = watch_;
-    pending.minY = pending.region.y + pending.region.height;
-    for (size_t i = pending.first; i < pending.first + pending.count; ++i) {
-      pending.minY = std::min(pending.minY, pendingSetups_[i]->minY);
-      pending.maxY = std::max(pending.maxY, pendingSetups_[i]->maxY);
-    }
-    pending.minY = std::max(pending.minY, pending.region.y);
-    pending.maxY = std::min(pending.maxY, pending.region.y + pending.region.height - 1);
-    if (pending.minY <= pending.maxY) pending_.push_back(pending);
+  const Rect& region = pending.region;
+  if (region.width <= 0 || region.height <= 0 || pending.count == 0) return false;
+  pending.minY = region.y + region.height;
+  pending.maxY = -1;
+  for (size_t i = pending.first; i < pending.first + pending.count; ++i) {
+    pending.minY = std::min(pending.minY, pendingSetups_[i]->minY);
+    pending.maxY = std::max(pending.maxY, pendingSetups_[i]->maxY);
   }
-  if (deferDepth_ == 0) flush();
+  pending.minY = std::max(pending.minY, region.y);
+  pending.maxY = std::min(pending.maxY, region.y + region.height - 1);
+  return pending.minY <= pending.maxY;
+}
+
+// A small draw under a DeferredDraws that keeps the geometry: its assembly waits for the flush,
+// where every queued draw is assembled at once on all threads (one chunk each, as on the main
+// thread), and its pending draw keeps its place in pending_ meanwhile.
+void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount) {
+  for (const uint32_t index : call.indices)  // thrown here, not from the flush
+    if (index >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
+  QueuedAssembly& q = queued_.emplace_back();
+  q.call = call;
+  q.planes = planes;
+  q.varyingCount = varyingCount;
+  q.pending = pending_.size();
+  PendingDraw& pending = pending_.emplace_back();
+  pending.region = drawRegion(*call.state, fb_);
+  pending.state = *call.state;
+  pending.shader = call.shader;
+  pending.watch = watch_;
+}
+
+void Renderer::assembleQueued() {
+  if (queuedWs_.size() < queued_.size()) queuedWs_.resize(queued_.size());
+  // The caller's state may have been a temporary: the pending draw's copy stands in for it.
+  for (QueuedAssembly& q : queued_) q.call.state = &pending_[q.pending].state;
+  pool_->run(int(queued_.size()), [&](int i) {
+    QueuedAssembly& q = queued_[size_t(i)];
+    const size_t triangles = q.call.indices.empty() ? q.call.vertices.size() / 3 : q.call.indices.size() / 3;
+    assembleRange(q.call, 0, triangles, q.planes, q.varyingCount, queuedWs_[size_t(i)]);
+  });
+  for (size_t i = 0; i < queued_.size(); ++i) {
+    PendingDraw& pending = pending_[queued_[i].pending];
+    if (!collectSetups(std::span(&queuedWs_[i], 1), pending)) {
+      pending.count = 0;  // nothing to rasterize: binned nowhere, no rows
+      pending.minY = std::numeric_limits<int>::max();
+      pending.maxY = -1;
+    }
+  }
+  queued_.clear();
 }
 
 namespace {
@@ -316,6 +365,7 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
 }
 
 void Renderer::flush() {
+  if (!queued_.empty()) assembleQueued();
   if (pending_.empty()) {
     pendingSetups_.clear();
     pendingBlocks_.clear();

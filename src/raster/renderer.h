@@ -104,6 +104,17 @@ class Renderer {
     int minY = 0, maxY = -1;      // the rows its triangles may touch
   };
   friend class DeferredDraws;
+  bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
+  // A small draw whose assembly waits for the flush (DeferredDraws with Geometry::Kept): its call
+  // (the state pointing at its pending draw's copy), clip planes, and its entry in pending_.
+  struct QueuedAssembly {
+    DrawCall call;
+    ClipPlanes planes;
+    int varyingCount = 0;
+    size_t pending = 0;
+  };
+  void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
+  void assembleQueued();
   void rasterizeBand(const std::vector<uint32_t>& setups, int y0, int y1, RasterStats& stats) const;
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 
@@ -128,6 +139,9 @@ class Renderer {
   std::vector<uint32_t> setupDraw_;               // the pending draw of each pending setup
   std::vector<std::vector<uint32_t>> binned_;     // per band of rows: its setups, in order
   int deferDepth_ = 0;
+  int keptDepth_ = 0;  // of those, the DeferredDraws whose makers keep every draw's geometry
+  std::vector<QueuedAssembly> queued_;
+  std::vector<AssemblyWorkspace> queuedWs_;
 };
 
 // While one of these lives, the renderer's draws are only set up; when the last one ends, all of
@@ -138,10 +152,20 @@ class Renderer {
 // Whoever makes one keeps, until it ends, every shader handed to those draws, and for shaded
 // draws the vertices (their varyings are read when the fragments are shaded). The framebuffer must
 // not be read or changed by other means (clears, callbacks) while one lives.
+//
+// With Geometry::Kept the maker also keeps every draw's vertices and indices until it ends (not
+// refilled between draws): small draws are then not even assembled at once, but all together at
+// the end, on all threads — the city's 129 casters' volumes, a few dozen triangles each.
 class DeferredDraws {
  public:
-  explicit DeferredDraws(Renderer& renderer) : renderer_(renderer) { ++renderer_.deferDepth_; }
+  enum class Geometry { Refilled, Kept };
+  explicit DeferredDraws(Renderer& renderer, Geometry geometry = Geometry::Refilled)
+      : renderer_(renderer), kept_(geometry == Geometry::Kept) {
+    ++renderer_.deferDepth_;
+    renderer_.keptDepth_ += kept_;
+  }
   ~DeferredDraws() {
+    renderer_.keptDepth_ -= kept_;
     if (--renderer_.deferDepth_ == 0) renderer_.flush();
   }
   DeferredDraws(const DeferredDraws&) = delete;
@@ -149,6 +173,7 @@ class DeferredDraws {
 
  private:
   Renderer& renderer_;
+  int kept_;
 };
 
 // The rectangle of pixels a draw may touch: viewport, framebuffer and (if on) scissor.

@@ -162,7 +162,8 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
              std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
              DrawKind kind) {
   PassResources keep;  // declared first: outlives the deferred draws, which end first
-  const DeferredDraws deferred(renderer);
+  // The prepared vertices and indices, and the lit copies in `keep`, stay put.
+  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
   for (const PreparedInstance& p : prepared) {
     const Material& material = scene.materials.at(size_t(p.instance->material));
     LightingSetup lighting;
@@ -184,7 +185,7 @@ void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scen
 
 void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared,
                    DrawKind kind) {
-  const DeferredDraws deferred(renderer);
+  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
   for (const PreparedInstance& p : prepared) {
     RenderState mirrored;
     DrawCall call;

@@ -79,7 +79,7 @@ class ShadowMappedShader final : public FragmentShader {
 void drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
                     const std::vector<PreparedInstance>& prepared, const std::vector<std::unique_ptr<LightShadow>>& shadows) {
   std::vector<std::unique_ptr<ShadowMappedShader>> keep;  // outlives the deferred draws
-  const DeferredDraws deferred(renderer);
+  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // the prepared geometry stays put
   for (const PreparedInstance& p : prepared) {
     const Material& material = scene.materials.at(size_t(p.instance->material));
     LightingSetup lighting;

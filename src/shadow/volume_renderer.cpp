@@ -1,5 +1,6 @@
 #include "shadow/volume_renderer.h"
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <sstream>
@@ -46,7 +47,7 @@ struct VolumeDraw {
   ShadowVolume volume;
   ShadowVolumeWorkspace workspace;
   std::vector<ClipVertex> vertices;
-  std::vector<uint32_t> indices;
+  std::array<std::vector<uint32_t>, 3> indices;  // per VolumePart, kept until the draws are rasterized
   const Instance* mirrored = nullptr;  // the instance built, when its world matrix mirrors
 
   void build(const PreparedInstance& p, const Light& light, const ShadowSettings& settings, bool withCaps) {
@@ -55,19 +56,22 @@ struct VolumeDraw {
     mirrored = p.instance->mirrored ? p.instance : nullptr;
     vertices.resize(volume.positions.size());
     for (size_t i = 0; i < volume.positions.size(); ++i) vertices[i].position = p.transform.toClip(volume.positions[i]);
+    for (const VolumePart part : {VolumePart::Side, VolumePart::FrontCap, VolumePart::BackCap}) {
+      std::vector<uint32_t>& list = indices[size_t(part)];
+      list.clear();
+      for (const glm::uvec3& t : volume.part(part)) list.insert(list.end(), {t.x, t.y, t.z});
+    }
   }
 
   void draw(Renderer& renderer, const RenderState& state, VolumePart part, DrawKind kind, int instance,
             const FragmentShader* shader = nullptr) {
     RenderState mirroredState;
-    const std::vector<glm::uvec3>& triangles = volume.part(part);
-    if (triangles.empty()) return;
-    indices.clear();
-    for (const glm::uvec3& t : triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    const std::vector<uint32_t>& list = indices[size_t(part)];
+    if (list.empty()) return;
     DrawCall call;
     call.state = mirrored ? &stateFor(state, *mirrored, mirroredState) : &state;
     call.vertices = vertices;
-    call.indices = indices;
+    call.indices = list;
     call.shader = shader;
     call.tag = drawTag(kind, instance);
     renderer.draw(call);
@@ -103,7 +107,7 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
   renderer.parallelFor(int(casters.size()), [&](int i) {
     volumes[size_t(i)].build(*casters[size_t(i)], light, scene.shadow, how[size_t(i)] == StencilCounting::ZFail);
   });
-  const DeferredDraws deferred(renderer);
+  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // `volumes` outlives it
   for (size_t i = 0; i < casters.size(); ++i) {
     const PreparedInstance& p = *casters[i];
     VolumeDraw& volume = volumes[i];
