@@ -145,6 +145,11 @@ void Renderer::assembleRange(const DrawCall& call, size_t first, size_t last, co
 }
 
 namespace {
+// How many triangles a draw has: three indices each, or three vertices each without indices.
+size_t trianglesOf(const DrawCall& call) {
+  return call.indices.empty() ? call.vertices.size() / 3 : call.indices.size() / 3;
+}
+
 // Triangle assembly is split into chunks of this many triangles when there are threads; each
 // chunk's setups are appended in chunk order, so the list is the same as on one thread.
 constexpr size_t kAssemblyChunk = 128;
@@ -204,7 +209,7 @@ void Renderer::draw(const DrawCall& call) {
   planes.guardBand = guardBandFor(state.viewport);
   const int varyingCount = call.shader ? call.shader->varyingCount() : 0;
 
-  const size_t triangleCount = call.indices.empty() ? call.vertices.size() / 3 : call.indices.size() / 3;
+  const size_t triangleCount = trianglesOf(call);
   stats_.trianglesIn += triangleCount;
   const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
   if (pool_ && chunks == 1 && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1) {
@@ -290,8 +295,7 @@ void Renderer::assembleQueued() {
   for (QueuedAssembly& q : queued_) q.call.state = &pending_[q.pending].state;
   pool_->run(int(queued_.size()), [&](int i) {
     QueuedAssembly& q = queued_[size_t(i)];
-    const size_t triangles = q.call.indices.empty() ? q.call.vertices.size() / 3 : q.call.indices.size() / 3;
-    assembleRange(q.call, 0, triangles, q.planes, q.varyingCount, queuedWs_[size_t(i)]);
+    assembleRange(q.call, 0, trianglesOf(q.call), q.planes, q.varyingCount, queuedWs_[size_t(i)]);
   });
   for (size_t i = 0; i < queued_.size(); ++i) {
     PendingDraw& pending = pending_[queued_[i].pending];
