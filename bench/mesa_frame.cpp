@@ -549,7 +549,8 @@ struct MesaFrameRenderer::Impl {
 
   // drawLit of scene_passes.cpp: every instance lit by `lit` (those in range), ambient or not.
   // Per pixel, the program draws every per-pixel material, and in the shadow-map camera pass every
-  // material (ShadowMappedShader lights per pixel whatever the material says).
+  // material (shadowref's camera pass lights a Gouraud material per vertex; the per-pixel pairs of
+  // bench/vs-mesa draw scenes whose shadow-mapped materials are all per pixel).
   void drawLitPass(const RenderState& state, const std::vector<const Light*>& lit, bool includeAmbient) {
     const bool shadowMapped = method == ShadowMethod::ShadowMap;
     glEnable(GL_LIGHTING);

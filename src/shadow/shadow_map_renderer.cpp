@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -75,10 +76,74 @@ class ShadowMappedShader final : public FragmentShader {
   std::vector<const LightShadow*> shadows_;
 };
 
-// Step 2 for one set of lights (one accumulation frame).
-void drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+// The camera pass's shader for a Gouraud material: GL_MODULATE as the fixed-function pipeline of
+// 002 does it — each light's share of the ambient plus its diffuse and specular, lit per vertex
+// (gouraudCameraVertices) and interpolated, times that light's compare result per fragment.
+// Varyings: the world position (0..2) for the lookup, then each light's colour.
+class ShadowMappedGouraudShader final : public FragmentShader {
+ public:
+  static constexpr int kFirstColor = 3;
+  static constexpr int kMaxLights = (kMaxVaryings - kFirstColor) / 3;
+
+  explicit ShadowMappedGouraudShader(std::vector<const LightShadow*> shadows) : shadows_(std::move(shadows)) {}
+
+  int varyingCount() const override { return kFirstColor + 3 * int(shadows_.size()); }
+
+  void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override {
+    glm::dvec3 c[kMaxBatch];
+    double factor[kMaxBatch];
+    for (int k = 0; k < batch.count; ++k) c[k] = glm::dvec3(0.0);
+    for (size_t i = 0; i < shadows_.size(); ++i) {
+      shadows_[i]->factors(batch.varyings[kVaryingPosition], batch.varyings[kVaryingPosition + 1],
+                           batch.varyings[kVaryingPosition + 2], batch.count, factor);
+      const double* const* colour = batch.varyings + kFirstColor + 3 * i;
+      for (int k = 0; k < batch.count; ++k) c[k] += glm::dvec3(colour[0][k], colour[1][k], colour[2][k]) * factor[k];
+    }
+    for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(c[k], 1.0);
+  }
+
+  glm::dvec4 shade(const FragmentInput& in) const override {
+    const double* v = in.varyings;
+    const glm::dvec3 p(v[kVaryingPosition], v[kVaryingPosition + 1], v[kVaryingPosition + 2]);
+    glm::dvec3 c(0.0);
+    for (size_t i = 0; i < shadows_.size(); ++i) {
+      const double* colour = v + kFirstColor + 3 * i;
+      c += glm::dvec3(colour[0], colour[1], colour[2]) * shadows_[i]->factor(p);
+    }
+    return glm::dvec4(c, 1.0);
+  }
+
+ private:
+  std::vector<const LightShadow*> shadows_;
+};
+
+// The vertices of a Gouraud material for ShadowMappedGouraudShader: the position stays, the
+// normal's varyings and those after it take each light's share of the ambient plus the light
+// (shadePoint's terms, in its order: ambient first).
+std::vector<ClipVertex> gouraudCameraVertices(const PreparedInstance& p, const LightingSetup& lighting, double share) {
+  const glm::dvec3 ambient = ambientTerm(lighting.material, lighting.globalAmbient) * share;
+  std::vector<ClipVertex> lit = p.vertices;
+  for (ClipVertex& v : lit) {
+    const glm::dvec3 pos(v.varyings[kVaryingPosition], v.varyings[kVaryingPosition + 1], v.varyings[kVaryingPosition + 2]);
+    const glm::dvec3 n(v.varyings[kVaryingNormal], v.varyings[kVaryingNormal + 1], v.varyings[kVaryingNormal + 2]);
+    for (size_t i = 0; i < lighting.lights.size(); ++i) {
+      const PhongLight& light = lighting.lights[i];
+      glm::dvec3 c = ambient;
+      if (light.position != glm::dvec4(0.0)) c += lightContribution(light, lighting.material, pos, n, lighting.eye);
+      for (int k = 0; k < 3; ++k) v.varyings[size_t(ShadowMappedGouraudShader::kFirstColor) + 3 * i + size_t(k)] = c[k];
+    }
+  }
+  return lit;
+}
+
+// Step 2 for one set of lights (one accumulation frame). Returns false when a Gouraud material had
+// to be lit per pixel: more lights than ShadowMappedGouraudShader has varyings for.
+bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
                     const std::vector<PreparedInstance>& prepared, const std::vector<std::unique_ptr<LightShadow>>& shadows) {
-  std::vector<std::unique_ptr<ShadowMappedShader>> keep;  // outlives the deferred draws
+  // Both outlive the deferred draws.
+  std::vector<std::unique_ptr<FragmentShader>> keep;
+  std::deque<std::vector<ClipVertex>> litVertices;
+  bool gouraudKept = true;
   const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // the prepared geometry stays put
   for (const PreparedInstance& p : prepared) {
     const Material& material = scene.materials.at(size_t(p.instance->material));
@@ -92,16 +157,24 @@ void drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& s
       // A light out of range (000 §4.3.1) contributes nothing but its share of the ambient.
       lighting.lights.push_back(withinRange(s->light, p.instance->worldBounds) ? toPhongLight(s->light) : PhongLight{glm::dvec4(0.0)});
     }
-    keep.push_back(std::make_unique<ShadowMappedShader>(lighting, std::move(active)));
     RenderState mirrored;
     DrawCall call;
     call.state = &stateFor(state, *p.instance, mirrored);
     call.vertices = p.vertices;
     call.indices = p.indices;
-    call.shader = keep.back().get();
     call.tag = drawTag(DrawKind::Lit, p.index);
+    const bool gouraud = material.shading == ShadingModel::Gouraud && !active.empty();
+    if (gouraud && active.size() <= size_t(ShadowMappedGouraudShader::kMaxLights)) {
+      call.vertices = litVertices.emplace_back(gouraudCameraVertices(p, lighting, 1.0 / double(active.size())));
+      keep.push_back(std::make_unique<ShadowMappedGouraudShader>(std::move(active)));
+    } else {
+      gouraudKept = gouraudKept && !gouraud;
+      keep.push_back(std::make_unique<ShadowMappedShader>(lighting, std::move(active)));
+    }
+    call.shader = keep.back().get();
     renderer.draw(call);
   }
+  return gouraudKept;
 }
 
 // The light sets of the accumulation frames: frame k holds the k-th of each light's positions.
@@ -185,7 +258,9 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
     }
     clearColor(fb, state, glm::vec4(glm::vec3(scene.background), 1.0f));
     clearDepth(fb, state, 1.0);
-    drawCameraPass(renderer, state, scene, view, prepared, shadows);
+    if (!drawCameraPass(renderer, state, scene, view, prepared, shadows) && k == 0)
+      result.notes.push_back("Gouraud materials lit per pixel: more than " +
+                             std::to_string(ShadowMappedGouraudShader::kMaxLights) + " shadow-mapped lights");
     const std::string name = numberedPass(passCounter, accumulating ? "camera-" + std::to_string(k) : "camera");
     result.timings.push_back({name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mapsDone).count()});
     if (options.onPass) options.onPass(name, fb);

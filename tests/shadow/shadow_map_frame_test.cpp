@@ -6,6 +6,7 @@
 // with N = 256 a texel is 1/32 wide, and the footprint |x|, |z| < 1 is exactly 64 texels.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -141,6 +142,48 @@ TEST_CASE("shadow map frame: shadowed fragments get the lit colour times the com
     }
   CHECK(darkened > 500);
   CHECK(unchanged > 10000);
+}
+
+TEST_CASE("shadow map frame: a Gouraud material is lit per vertex and modulated per fragment (fixed-function "
+          "GL_MODULATE): unshadowed, the bytes of the shadowless Gouraud frame; shadowed, 0.4 of them", "[shadowmap-frame]") {
+  // The bulb straight above the ground's centre: the slab's top face has only its four corners as
+  // vertices, all 8.25 from the light, so per vertex the whole top is one colour, while per pixel
+  // it is brightest below the bulb.
+  Scene gouraud = makeScene(kBulb);
+  for (Material& m : gouraud.materials) m.shading = ShadingModel::Gouraud;
+  Scene unshadowed = gouraud;
+  unshadowed.shadow.compareFail = 1.0;
+  Scene shadowless = gouraud;
+  shadowless.shadow.method = ShadowMethod::None;
+  const Scene perPixel = makeScene(kBulb);
+  const FrameResult g = render(gouraud), u = render(unshadowed), none = render(shadowless), pp = render(perPixel);
+  REQUIRE(u.framebuffer.color() == none.framebuffer.color());
+  REQUIRE(u.framebuffer.depthCodes() == none.framebuffer.depthCodes());
+  const Framebuffer& fb = g.framebuffer;
+  std::vector<glm::vec4> groundLit, groundPerPixel;
+  size_t darkened = 0;
+  for (int y = 0; y < fb.height(); ++y)
+    for (int x = 0; x < fb.width(); ++x) {
+      const size_t i = size_t(y) * size_t(fb.width()) + size_t(x);
+      const glm::vec4 s = fb.color()[i], l = none.framebuffer.color()[i];
+      if (s != l) {
+        ++darkened;
+        for (int c = 0; c < 3; ++c) REQUIRE(std::abs(double(s[c]) - kFail * double(l[c])) <= 1e-6 * double(l[c]) + 1e-7);
+      }
+      const glm::dvec3 p = unproject(gouraud, fb, x, y);
+      if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 3.9 || std::abs(p.z) > 3.9 || s != l) continue;  // lit ground top
+      groundLit.push_back(s);
+      groundPerPixel.push_back(pp.framebuffer.color()[i]);
+    }
+  CHECK(darkened > 500);
+  REQUIRE(groundLit.size() > 10000);
+  // Hand-computed: ambient 0.2 · 0.7 plus diffuse 0.7 · cos at a corner, 6 / sqrt(4² + 6² + 4²).
+  const double corner = 0.2 * 0.7 + 0.7 * 6.0 / std::sqrt(68.0);
+  for (const glm::vec4& c : groundLit) REQUIRE(c == groundLit.front());
+  CHECK(double(groundLit.front().r) == Approx(corner).epsilon(1e-6));
+  const auto brightest = std::max_element(groundPerPixel.begin(), groundPerPixel.end(),
+                                          [](const glm::vec4& a, const glm::vec4& b) { return a.r < b.r; });
+  CHECK(double(brightest->r) > corner + 0.1);  // per pixel: well above the corners' colour
 }
 
 TEST_CASE("shadow map frame: a spot light above the box throws the top face's projection, scaled 6/4", "[shadowmap-frame]") {

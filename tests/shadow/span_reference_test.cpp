@@ -34,6 +34,7 @@ TEST_CASE("span loops give the reference path's bytes for every method", "[spans
       {"scenes/room.yaml", {"shadow.method=none"}},
       {"scenes/room.yaml", {"shadow.method=zfail", "materials.wall.shading=gouraud", "materials.floor.shading=gouraud"}},
       {"scenes/directional.yaml", {"shadow.method=zpass"}},
+      {"scenes/directional.yaml", {"shadow.method=shadowmap", "shadow.pcf=3", "shadow.map_size=128"}},
       {"scenes/room.yaml", {"shadow.method=shadowmap", "shadow.map_size=128"}},
       {"scenes/room.yaml", {"shadow.method=zfail", "lights.0.soft.shape=square_y", "lights.0.soft.spacing=0.3"}},
       {"scenes/pumpkins.yaml", {"shadow.method=auto"}},
