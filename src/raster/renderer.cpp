@@ -129,10 +129,19 @@ void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const 
 
 void Renderer::assembleRange(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes,
                              int varyingCount, AssemblyWorkspace& ws) const {
+  startWorkspace(ws, last - first);
+  appendTriangles(call, first, last, planes, varyingCount, ws);
+}
+
+void Renderer::startWorkspace(AssemblyWorkspace& ws, size_t triangles) {
   ws.setups.clear();
-  ws.setups.reserve(last - first);  // the last draw's block was moved out: one allocation, not a doubling series
+  ws.setups.reserve(triangles);  // the last draw's block was moved out: one allocation, not a doubling series
   ws.clippedVertices.clear();
   ws.stats = {};
+}
+
+void Renderer::appendTriangles(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes,
+                               int varyingCount, AssemblyWorkspace& ws) const {
   for (size_t i = first; i < last; ++i) {
     const ClipVertex* v[3];
     for (int k = 0; k < 3; ++k) {
@@ -153,6 +162,8 @@ size_t trianglesOf(const DrawCall& call) {
 // Triangle assembly is split into chunks of this many triangles when there are threads; each
 // chunk's setups are appended in chunk order, so the list is the same as on one thread.
 constexpr size_t kAssemblyChunk = 128;
+// Groups of queued small draws per thread at a flush (assembleQueued).
+constexpr size_t kQueuedGroupsPerThread = 4;
 // The vertices' clip tests and window transforms, in chunks of this many vertices on threads.
 constexpr size_t kCornerChunk = 1024;
 }  // namespace
@@ -244,18 +255,27 @@ void Renderer::draw(const DrawCall& call) {
 bool Renderer::collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending) {
   pending.first = pendingSetups_.size();
   for (AssemblyWorkspace& ws : workspaces) {
-    // The chunk's setups move as a block (no copy: 27k pumpkin triangles are 8 MB a pass); the
-    // pending list points into it.
     for (const TriangleSetup& t : ws.setups) pendingSetups_.push_back(&t);
-    pendingBlocks_.push_back(std::move(ws.setups));
-    ws.setups = {};
-    stats_.trianglesClipped += ws.stats.trianglesClipped;
-    stats_.trianglesCulled += ws.stats.trianglesCulled;
-    if (!ws.clippedVertices.empty()) {
-      pendingClipped_.push_back(std::move(ws.clippedVertices));
-      ws.clippedVertices = {};
-    }
+    keepBlock(ws);
   }
+  return finishPending(pending);
+}
+
+// The workspace's setups move as a block (no copy: 27k pumpkin triangles are 8 MB a pass) — the
+// pending list points into it — with the vertices clipping made; its counters are added up.
+void Renderer::keepBlock(AssemblyWorkspace& ws) {
+  pendingBlocks_.push_back(std::move(ws.setups));
+  ws.setups = {};
+  stats_.trianglesClipped += ws.stats.trianglesClipped;
+  stats_.trianglesCulled += ws.stats.trianglesCulled;
+  if (!ws.clippedVertices.empty()) {
+    pendingClipped_.push_back(std::move(ws.clippedVertices));
+    ws.clippedVertices = {};
+  }
+}
+
+// `pending`'s setups are pendingSetups_[pending.first, end): counts them and fills in its rows.
+bool Renderer::finishPending(PendingDraw& pending) {
   pending.count = pendingSetups_.size() - pending.first;
   stats_.trianglesRasterized += pending.count;
   const Rect& region = pending.region;
@@ -271,9 +291,6 @@ bool Renderer::collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDra
   return pending.minY <= pending.maxY;
 }
 
-// A small draw under a DeferredDraws that keeps the geometry: its assembly waits for the flush,
-// where every queued draw is assembled at once on all threads (one chunk each, as on the main
-// thread), and its pending draw keeps its place in pending_ meanwhile.
 void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount) {
   for (const uint32_t index : call.indices)  // thrown here, not from the flush
     if (index >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
@@ -290,28 +307,48 @@ void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int
 }
 
 void Renderer::assembleQueued() {
-  if (queuedWs_.size() < queued_.size()) queuedWs_.resize(queued_.size());
+  // A few groups of consecutive queued draws per thread, each assembled into one workspace: one
+  // task and one block per group rather than per draw (the city's volume pass queues ~800).
+  const size_t groups = std::min(queued_.size(), size_t(pool_->threadCount()) * kQueuedGroupsPerThread);
+  if (queuedWs_.size() < groups) queuedWs_.resize(groups);
+  auto groupStart = [&](size_t g) { return queued_.size() * g / groups; };
   // The caller's state may have been a temporary: the pending draw's copy stands in for it.
   for (QueuedAssembly& q : queued_) q.call.state = &pending_[q.pending].state;
-  pool_->run(int(queued_.size()), [&](int i) {
-    QueuedAssembly& q = queued_[size_t(i)];
-    assembleRange(q.call, 0, trianglesOf(q.call), q.planes, q.varyingCount, queuedWs_[size_t(i)]);
-  });
-  for (size_t i = 0; i < queued_.size(); ++i) {
-    PendingDraw& pending = pending_[queued_[i].pending];
-    if (!collectSetups(std::span(&queuedWs_[i], 1), pending)) {
-      pending.count = 0;  // nothing to rasterize: binned nowhere, no rows
-      pending.minY = std::numeric_limits<int>::max();
-      pending.maxY = -1;
+  pool_->run(int(groups), [&](int g) {
+    AssemblyWorkspace& ws = queuedWs_[size_t(g)];
+    size_t triangles = 0;
+    for (size_t i = groupStart(size_t(g)); i < groupStart(size_t(g) + 1); ++i) triangles += trianglesOf(queued_[i].call);
+    startWorkspace(ws, triangles);
+    for (size_t i = groupStart(size_t(g)); i < groupStart(size_t(g) + 1); ++i) {
+      QueuedAssembly& q = queued_[i];
+      appendTriangles(q.call, 0, trianglesOf(q.call), q.planes, q.varyingCount, ws);
+      q.setupsEnd = ws.setups.size();
     }
+  });
+  for (size_t g = 0; g < groups; ++g) {
+    AssemblyWorkspace& ws = queuedWs_[g];
+    size_t next = 0;
+    for (size_t i = groupStart(g); i < groupStart(g + 1); ++i) {
+      PendingDraw& pending = pending_[queued_[i].pending];
+      pending.first = pendingSetups_.size();
+      for (; next < queued_[i].setupsEnd; ++next) pendingSetups_.push_back(&ws.setups[next]);
+      if (!finishPending(pending)) {
+        pending.count = 0;  // nothing to rasterize: binned nowhere, no rows
+        pending.minY = std::numeric_limits<int>::max();
+        pending.maxY = -1;
+      }
+    }
+    keepBlock(ws);
   }
   queued_.clear();
 }
 
 namespace {
-// Bands per thread when a pass is rasterized: enough for the threads to even out uneven rows,
-// few enough that a large triangle is not set up again in many bands. At least kMinBandRows rows.
-constexpr int kBandsPerThread = 6;
+// Bands per thread when a pass is rasterized: enough for the threads to even out what the
+// estimate of each row's work (bandRows) gets wrong, few enough that a large triangle — a shadow
+// volume's side reaches across the screen — is not set up again in many bands. At least
+// kMinBandRows rows a band.
+constexpr int kBandsPerThread = 3;
 constexpr int kMinBandRows = 16;
 // Below this many candidate pixels a draw is not worth waking the other threads for.
 constexpr int64_t kParallelThreshold = 2048;
@@ -368,6 +405,55 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
   for (int i = 0; i < count; ++i) task(i);
 }
 
+// Cuts rows [minY, maxY] into at most maxBands bands, each at least kMinBandRows rows (unless all
+// of them are fewer): fills bandFirstRow_ (band b is rows [bandFirstRow_[b], bandFirstRow_[b + 1]))
+// and bandOfRow_, returns the count. The threads take the bands in order, so the bands get
+// shrinking shares of the estimated work — maxBands + 1, maxBands, … 2 parts — and the last ones,
+// small, even out the threads' ends. A row's work is estimated as its pixels in the pending
+// triangles' bounding boxes, plus a row's and a triangle's fixed costs in pixels: the city's
+// shadow volumes crowd into the lower rows, and equal rows would leave one thread most of them.
+int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
+  constexpr int64_t kRowCost = 8, kTriangleCost = 64;
+  const size_t rows = size_t(maxY - minY + 1);
+  rowWork_.assign(rows + 1, 0);  // differences: each triangle adds to its rows
+  rowStart_.assign(rows, 0);     // what each triangle adds once, on its first row
+  for (const PendingDraw& draw : pending_) {
+    const int x0 = draw.region.x, x1 = draw.region.x + draw.region.width - 1;
+    for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
+      const TriangleSetup& t = *pendingSetups_[i];
+      const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
+      const int64_t width = std::min(t.maxX, x1) - std::max(t.minX, x0) + 1;
+      if (bottom > top || width <= 0) continue;
+      rowWork_[size_t(bottom - minY)] += width + kRowCost;
+      rowWork_[size_t(top - minY) + 1] -= width + kRowCost;
+      rowStart_[size_t(bottom - minY)] += kTriangleCost;
+    }
+  }
+  int64_t total = 0;
+  for (size_t r = 0; r < rows; ++r) {
+    if (r > 0) rowWork_[r] += rowWork_[r - 1];
+    total += rowWork_[r] + rowStart_[r] + 1;  // + 1: no row is free, and no band is of no rows
+  }
+  const int64_t parts = int64_t(maxBands) * (maxBands + 3) / 2;  // (maxBands + 1) + … + 2
+  bandFirstRow_.assign(1, minY);
+  bandOfRow_.resize(rows);
+  int64_t done = 0, partsUpTo = maxBands + 1;  // the parts of bands 0 … the current one
+  size_t start = 0;
+  for (size_t r = 0; r < rows; ++r) {
+    done += rowWork_[r] + rowStart_[r] + 1;
+    const int band = int(bandFirstRow_.size()) - 1;
+    bandOfRow_[r] = band;
+    const bool full = done * parts >= total * partsUpTo;  // this band has its share
+    if (full && r + 1 - start >= size_t(kMinBandRows) && rows - (r + 1) >= size_t(kMinBandRows) && band + 1 < maxBands) {
+      bandFirstRow_.push_back(minY + int(r) + 1);
+      start = r + 1;
+      partsUpTo += maxBands - band;  // band + 1's share: maxBands + 1 - (band + 1)
+    }
+  }
+  bandFirstRow_.push_back(maxY + 1);
+  return int(bandFirstRow_.size()) - 1;
+}
+
 void Renderer::flush() {
   if (!queued_.empty()) assembleQueued();
   if (pending_.empty()) {
@@ -383,14 +469,24 @@ void Renderer::flush() {
     maxY = std::max(maxY, d.maxY);
     if (candidates < kParallelThreshold) candidates += candidatePixels(pendingSetups_, d.first, d.count, d.region);
   }
+  if (maxY < minY) {  // every pending draw was culled or clipped away whole
+    pending_.clear();
+    pendingSetups_.clear();
+    pendingBlocks_.clear();
+    pendingClipped_.clear();
+    return;
+  }
   const int threads = pool_ ? pool_->threadCount() : 1;
-  const int bandRows = std::max(kMinBandRows, (maxY - minY + threads * kBandsPerThread) / (threads * kBandsPerThread));
-  const int bands = (maxY - minY + bandRows) / bandRows;
-  const bool parallel = pool_ && bands >= 2 && candidates >= kParallelThreshold;
+  const int maxBands = std::min(threads * kBandsPerThread, (maxY - minY + 1) / kMinBandRows);
+  const bool parallel = pool_ && maxBands >= 2 && candidates >= kParallelThreshold;
+  const int bands = parallel ? splitIntoBands(minY, maxY, maxBands) : 1;
+  if (!parallel) {
+    bandFirstRow_.assign({minY, maxY + 1});
+    bandOfRow_.assign(size_t(maxY - minY + 1), 0);
+  }
   // Bin: every band gets the setups whose rows (inside their draw's region) meet it, in order.
-  const int binCount = parallel ? bands : 1;
-  if (binned_.size() < size_t(binCount)) binned_.resize(size_t(binCount));
-  for (int b = 0; b < binCount; ++b) binned_[size_t(b)].clear();
+  if (binned_.size() < size_t(bands)) binned_.resize(size_t(bands));
+  for (int b = 0; b < bands; ++b) binned_[size_t(b)].clear();
   setupDraw_.resize(pendingSetups_.size());
   for (size_t d = 0; d < pending_.size(); ++d) {
     const PendingDraw& draw = pending_[d];
@@ -399,7 +495,7 @@ void Renderer::flush() {
       setupDraw_[i] = uint32_t(d);
       const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
       if (bottom > top) continue;
-      const int first = parallel ? (bottom - minY) / bandRows : 0, last = parallel ? (top - minY) / bandRows : 0;
+      const int first = bandOfRow_[size_t(bottom - minY)], last = bandOfRow_[size_t(top - minY)];
       for (int b = first; b <= last; ++b) binned_[size_t(b)].push_back(uint32_t(i));
     }
   }
@@ -407,12 +503,11 @@ void Renderer::flush() {
     rasterizeBand(binned_[0], minY, maxY, stats_);
   } else {
     // Each band of rows belongs to one task, which replays its setups in submission order.
-    bandStats_.assign(size_t(bands), RasterStats{});
+    bandStats_.assign(size_t(bands), BandStats{});
     pool_->run(bands, [&](int b) {
-      const int y0 = minY + b * bandRows, y1 = std::min(maxY, y0 + bandRows - 1);
-      rasterizeBand(binned_[size_t(b)], y0, y1, bandStats_[size_t(b)]);
+      rasterizeBand(binned_[size_t(b)], bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1, bandStats_[size_t(b)].stats);
     });
-    for (const RasterStats& s : bandStats_) stats_ += s;
+    for (const BandStats& s : bandStats_) stats_ += s.stats;
   }
   pending_.clear();
   pendingSetups_.clear();

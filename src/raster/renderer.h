@@ -72,7 +72,8 @@ class Renderer {
  private:
   // What one thread of triangle assembly works in: its share of the triangles' setups, the
   // vertices clipping made (kept at stable addresses for WindowVertex::source), scratch, counters.
-  struct AssemblyWorkspace {
+  // Cache lines of its own: its thread writes its vectors' ends and counters per triangle.
+  struct alignas(128) AssemblyWorkspace {
     std::vector<TriangleSetup> setups;
     std::deque<ClipVertex> clippedVertices;
     std::vector<ClipVertex> polygon, clipScratch, clipOut;
@@ -89,6 +90,9 @@ class Renderer {
   void prepareCorners(const DrawCall& call, const ClipPlanes& planes);
   void assembleRange(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes, int varyingCount,
                      AssemblyWorkspace& ws) const;
+  static void startWorkspace(AssemblyWorkspace& ws, size_t triangles);
+  void appendTriangles(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes, int varyingCount,
+                       AssemblyWorkspace& ws) const;
   void assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, const RenderState& state,
                         const ClipPlanes& planes, int varyingCount, AssemblyWorkspace& ws) const;
   void addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
@@ -105,6 +109,8 @@ class Renderer {
   };
   friend class DeferredDraws;
   bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
+  void keepBlock(AssemblyWorkspace& ws);
+  bool finishPending(PendingDraw& pending);
   // A small draw whose assembly waits for the flush (DeferredDraws with Geometry::Kept): its call
   // (the state pointing at its pending draw's copy), clip planes, and its entry in pending_.
   struct QueuedAssembly {
@@ -112,6 +118,7 @@ class Renderer {
     ClipPlanes planes;
     int varyingCount = 0;
     size_t pending = 0;
+    size_t setupsEnd = 0;  // after assembly: the end of its setups in its group's workspace
   };
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();
@@ -120,7 +127,13 @@ class Renderer {
 
   Framebuffer& fb_;
   std::unique_ptr<ThreadPool> pool_;
-  std::vector<RasterStats> bandStats_;
+  // A band's counters, on cache lines of their own: the band's thread adds to them per triangle
+  // (per chunk of fragments in a shaded pass), and a line shared with the next band's counters
+  // would travel between the threads at every addition.
+  struct alignas(128) BandStats {
+    RasterStats stats;
+  };
+  std::vector<BandStats> bandStats_;
   RasterStats stats_;
   PixelWatch watch_;
   uint64_t drawCount_ = 0;
@@ -138,6 +151,10 @@ class Renderer {
   std::vector<std::deque<ClipVertex>> pendingClipped_;
   std::vector<uint32_t> setupDraw_;               // the pending draw of each pending setup
   std::vector<std::vector<uint32_t>> binned_;     // per band of rows: its setups, in order
+  int splitIntoBands(int minY, int maxY, int maxBands);
+  std::vector<int64_t> rowWork_, rowStart_;  // per row: the estimate splitIntoBands balances
+  std::vector<int> bandFirstRow_;    // band b: rows [bandFirstRow_[b], bandFirstRow_[b + 1])
+  std::vector<int> bandOfRow_;       // per row from the flush's first: its band
   int deferDepth_ = 0;
   int keptDepth_ = 0;  // of those, the DeferredDraws whose makers keep every draw's geometry
   std::vector<QueuedAssembly> queued_;

@@ -42,8 +42,9 @@ struct LightTotals {
 };
 
 // One instance's volume for one light, transformed to clip space with the instance's own
-// VertexTransform: the front cap's vertices are the scene pass's vertices, bit for bit.
-struct VolumeDraw {
+// VertexTransform: the front cap's vertices are the scene pass's vertices, bit for bit. Cache
+// lines of its own: the casters' volumes are built side by side on all threads.
+struct alignas(128) VolumeDraw {
   ShadowVolume volume;
   ShadowVolumeWorkspace workspace;
   std::vector<ClipVertex> vertices;
