@@ -186,6 +186,24 @@ TEST_CASE("shadow map frame: a Gouraud material is lit per vertex and modulated 
   CHECK(double(brightest->r) > corner + 0.1);  // per pixel: well above the corners' colour
 }
 
+TEST_CASE("shadow map frame: under more shadow-mapped lights than the varyings hold, a Gouraud material is lit per "
+          "pixel, and the frame says so", "[shadowmap-frame]") {
+  std::string lights = kBulb;
+  for (int i = 1; i < 5; ++i)
+    lights += "\n  - {name: bulb" + std::to_string(i) + ", type: point, position: [" + std::to_string(i - 2.5) + ", 6, 1]}";
+  const std::string shadow = "{method: shadowmap, map_size: 64}";
+  Scene gouraud = makeScene(lights, shadow);
+  REQUIRE(gouraud.lights.size() == 5);
+  for (Material& m : gouraud.materials) m.shading = ShadingModel::Gouraud;
+  const FrameResult g = render(gouraud), pp = render(makeScene(lights, shadow));
+  CHECK(sameColour(g.framebuffer, pp.framebuffer));
+  const auto said = std::find_if(g.notes.begin(), g.notes.end(), [](const std::string& n) {
+    return n.find("Gouraud materials lit per pixel") != std::string::npos;
+  });
+  CHECK(said != g.notes.end());
+  CHECK(std::none_of(pp.notes.begin(), pp.notes.end(), [](const std::string& n) { return n.find("Gouraud") != std::string::npos; }));
+}
+
 TEST_CASE("shadow map frame: a spot light above the box throws the top face's projection, scaled 6/4", "[shadowmap-frame]") {
   const Scene scene = makeScene(kSpot);
   const auto shadow = shadowOf(scene);
