@@ -82,17 +82,17 @@ void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const 
                                 const ClipPlanes& planes, int varyingCount, AssemblyWorkspace& ws) const {
   canonicalRotation(a, b, c);
   const ClipVertex* tri[3] = {a, b, c};
-  const VertexCorners& cached = corners_;
+  const VertexCorners* cached = ws.corners && ws.corners->base ? ws.corners : nullptr;
   bool inside = true;
-  if (cached.base) {
-    for (const ClipVertex* v : tri) inside = inside && cached.inside[size_t(v - cached.base)];
+  if (cached) {
+    for (const ClipVertex* v : tri) inside = inside && cached->inside[size_t(v - cached->base)];
   } else {
     for (const ClipVertex* v : tri) inside = inside && insideAllPlanes(v, 1, planes);
   }
 
   if (inside) {
     auto window = [&](const ClipVertex* v) {
-      return cached.base ? cached.window[size_t(v - cached.base)] : toWindow(*v, state.viewport);
+      return cached ? cached->window[size_t(v - cached->base)] : toWindow(*v, state.viewport);
     };
     const WindowVertex wa = window(a), wb = window(b), wc = window(c);
     const int64_t area2 = signedArea2(wa, wb, wc);
@@ -172,15 +172,16 @@ constexpr size_t kCornerChunk = 1024;
 // the clip test and window transform of each vertex the draw uses, once (the same function of the
 // same vertex: the same bits). A volume's draws use part of their vertices each (a cap's near or
 // far ones), so the used ones are marked first.
-void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes) {
+void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes, VertexCorners& corners,
+                              ThreadPool* pool) {
   const size_t count = call.vertices.size();
-  corners_.base = nullptr;
+  corners.base = nullptr;
   if (call.indices.empty() || count > call.indices.size()) return;
-  if (corners_.window.size() < count) {  // grown only: resizing down and up would construct again
-    corners_.window.resize(count);
-    corners_.inside.resize(count);
+  if (corners.window.size() < count) {  // grown only: resizing down and up would construct again
+    corners.window.resize(count);
+    corners.inside.resize(count);
   }
-  uint8_t* const inside = corners_.inside.data();
+  uint8_t* const inside = corners.inside.data();
   std::fill_n(inside, count, uint8_t(2));  // 2: unused
   for (const uint32_t i : call.indices)
     if (i < count) inside[i] = 0;  // an index out of range throws in assembleRange
@@ -189,18 +190,18 @@ void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes) {
       if (inside[i] == 2) continue;
       const ClipVertex& v = call.vertices[i];
       inside[i] = insideAllPlanes(&v, 1, planes);
-      if (inside[i]) corners_.window[i] = toWindow(v, call.state->viewport);  // toWindow needs w > 0
+      if (inside[i]) corners.window[i] = toWindow(v, call.state->viewport);  // toWindow needs w > 0
     }
   };
   const size_t chunks = (count + kCornerChunk - 1) / kCornerChunk;
-  if (pool_ && chunks > 1) {
-    pool_->run(int(chunks), [&](int c) {
+  if (pool && chunks > 1) {
+    pool->run(int(chunks), [&](int c) {
       range(size_t(c) * kCornerChunk, std::min(count, size_t(c + 1) * kCornerChunk));
     });
   } else {
     range(0, count);
   }
-  corners_.base = call.vertices.data();
+  corners.base = call.vertices.data();
 }
 
 void Renderer::draw(const DrawCall& call) {
@@ -222,13 +223,14 @@ void Renderer::draw(const DrawCall& call) {
 
   const size_t triangleCount = trianglesOf(call);
   stats_.trianglesIn += triangleCount;
-  const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
-  if (pool_ && chunks == 1 && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1) {
+  if (pool_ && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1) {
     queueAssembly(call, planes, varyingCount);
     return;
   }
+  const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
   if (assembly_.size() < chunks) assembly_.resize(chunks);
-  prepareCorners(call, planes);
+  prepareCorners(call, planes, corners_, pool_.get());
+  for (size_t c = 0; c < chunks; ++c) assembly_[c].corners = &corners_;
   if (chunks == 1) {
     assembleRange(call, 0, triangleCount, planes, varyingCount, assembly_[0]);
   } else {
@@ -307,28 +309,50 @@ void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int
 }
 
 void Renderer::assembleQueued() {
-  // A few groups of consecutive queued draws per thread, each assembled into one workspace: one
-  // task and one block per group rather than per draw (the city's volume pass queues ~800).
-  const size_t groups = std::min(queued_.size(), size_t(pool_->threadCount()) * kQueuedGroupsPerThread);
+  // Groups of consecutive queued draws, of about equal triangle counts, a few per thread, each
+  // assembled into one workspace by one task: one pool run for the whole pass instead of one or
+  // two per draw, one block per group (the city's volume pass queues ~800 draws, the pumpkins'
+  // passes a dozen large ones).
+  size_t total = 0;
+  for (const QueuedAssembly& q : queued_) total += trianglesOf(q.call);
+  const size_t target = std::max<size_t>(1, total / (size_t(pool_->threadCount()) * kQueuedGroupsPerThread));
+  queuedGroups_.assign(1, 0);
+  size_t inGroup = 0;
+  for (size_t i = 0; i < queued_.size(); ++i) {
+    inGroup += trianglesOf(queued_[i].call);
+    if (inGroup >= target && i + 1 < queued_.size()) {
+      queuedGroups_.push_back(i + 1);
+      inGroup = 0;
+    }
+  }
+  queuedGroups_.push_back(queued_.size());
+  const size_t groups = queuedGroups_.size() - 1;
   if (queuedWs_.size() < groups) queuedWs_.resize(groups);
-  auto groupStart = [&](size_t g) { return queued_.size() * g / groups; };
   // The caller's state may have been a temporary: the pending draw's copy stands in for it.
   for (QueuedAssembly& q : queued_) q.call.state = &pending_[q.pending].state;
   pool_->run(int(groups), [&](int g) {
     AssemblyWorkspace& ws = queuedWs_[size_t(g)];
     size_t triangles = 0;
-    for (size_t i = groupStart(size_t(g)); i < groupStart(size_t(g) + 1); ++i) triangles += trianglesOf(queued_[i].call);
+    for (size_t i = queuedGroups_[size_t(g)]; i < queuedGroups_[size_t(g) + 1]; ++i) triangles += trianglesOf(queued_[i].call);
     startWorkspace(ws, triangles);
-    for (size_t i = groupStart(size_t(g)); i < groupStart(size_t(g) + 1); ++i) {
+    for (size_t i = queuedGroups_[size_t(g)]; i < queuedGroups_[size_t(g) + 1]; ++i) {
       QueuedAssembly& q = queued_[i];
-      appendTriangles(q.call, 0, trianglesOf(q.call), q.planes, q.varyingCount, ws);
+      const size_t count = trianglesOf(q.call);
+      // A large indexed draw shares its vertices among many triangles: each is worked out once.
+      ws.corners = nullptr;
+      if (count > kAssemblyChunk) {
+        prepareCorners(q.call, q.planes, ws.ownCorners, nullptr);
+        ws.corners = &ws.ownCorners;
+      }
+      appendTriangles(q.call, 0, count, q.planes, q.varyingCount, ws);
       q.setupsEnd = ws.setups.size();
     }
+    ws.corners = nullptr;
   });
   for (size_t g = 0; g < groups; ++g) {
     AssemblyWorkspace& ws = queuedWs_[g];
     size_t next = 0;
-    for (size_t i = groupStart(g); i < groupStart(g + 1); ++i) {
+    for (size_t i = queuedGroups_[g]; i < queuedGroups_[g + 1]; ++i) {
       PendingDraw& pending = pending_[queued_[i].pending];
       pending.first = pendingSetups_.size();
       for (; next < queued_[i].setupsEnd; ++next) pendingSetups_.push_back(&ws.setups[next]);

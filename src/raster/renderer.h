@@ -70,16 +70,6 @@ class Renderer {
   }
 
  private:
-  // What one thread of triangle assembly works in: its share of the triangles' setups, the
-  // vertices clipping made (kept at stable addresses for WindowVertex::source), scratch, counters.
-  // Cache lines of its own: its thread writes its vectors' ends and counters per triangle.
-  struct alignas(128) AssemblyWorkspace {
-    std::vector<TriangleSetup> setups;
-    std::deque<ClipVertex> clippedVertices;
-    std::vector<ClipVertex> polygon, clipScratch, clipOut;
-    std::vector<WindowVertex> windowPolygon;
-    RasterStats stats;
-  };
   // What assembly needs of each vertex of an indexed draw, worked out once per vertex instead of
   // once per triangle corner: whether it is inside every clip plane, and if so its window vertex.
   struct VertexCorners {
@@ -87,7 +77,22 @@ class Renderer {
     std::vector<uint8_t> inside;
     const ClipVertex* base = nullptr;  // the draw's vertices; empty: work per corner
   };
-  void prepareCorners(const DrawCall& call, const ClipPlanes& planes);
+  // What one thread of triangle assembly works in: its share of the triangles' setups, the
+  // vertices clipping made (kept at stable addresses for WindowVertex::source), scratch, counters,
+  // and the corners of the draw it assembles (nullptr: work per corner).
+  // Cache lines of its own: its thread writes its vectors' ends and counters per triangle.
+  struct alignas(128) AssemblyWorkspace {
+    const VertexCorners* corners = nullptr;
+    VertexCorners ownCorners;  // a queued draw's (assembleQueued)
+    std::vector<TriangleSetup> setups;
+    std::deque<ClipVertex> clippedVertices;
+    std::vector<ClipVertex> polygon, clipScratch, clipOut;
+    std::vector<WindowVertex> windowPolygon;
+    RasterStats stats;
+  };
+  // Fills `corners` for the call (on the pool's threads when given); leaves them empty for a draw
+  // without indices or with fewer indices than vertices.
+  static void prepareCorners(const DrawCall& call, const ClipPlanes& planes, VertexCorners& corners, ThreadPool* pool);
   void assembleRange(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes, int varyingCount,
                      AssemblyWorkspace& ws) const;
   static void startWorkspace(AssemblyWorkspace& ws, size_t triangles);
@@ -158,6 +163,7 @@ class Renderer {
   int deferDepth_ = 0;
   int keptDepth_ = 0;  // of those, the DeferredDraws whose makers keep every draw's geometry
   std::vector<QueuedAssembly> queued_;
+  std::vector<size_t> queuedGroups_;  // assembleQueued's groups: [queuedGroups_[g], queuedGroups_[g + 1])
   std::vector<AssemblyWorkspace> queuedWs_;
 };
 
