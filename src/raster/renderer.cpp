@@ -162,7 +162,7 @@ size_t trianglesOf(const DrawCall& call) {
 // Triangle assembly is split into chunks of this many triangles when there are threads; each
 // chunk's setups are appended in chunk order, so the list is the same as on one thread.
 constexpr size_t kAssemblyChunk = 128;
-// Groups of queued small draws per thread at a flush (assembleQueued).
+// Groups of queued draws per thread at a flush (assembleQueued).
 constexpr size_t kQueuedGroupsPerThread = 4;
 // The vertices' clip tests and window transforms, in chunks of this many vertices on threads.
 constexpr size_t kCornerChunk = 1024;
@@ -293,6 +293,9 @@ bool Renderer::finishPending(PendingDraw& pending) {
   return pending.minY <= pending.maxY;
 }
 
+// A draw under a DeferredDraws that keeps the geometry: its assembly waits for the flush, where
+// every queued draw is assembled at once on all threads (assembleQueued), and its pending draw
+// keeps its place in pending_ meanwhile.
 void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount) {
   for (const uint32_t index : call.indices)  // thrown here, not from the flush
     if (index >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
@@ -369,7 +372,7 @@ void Renderer::assembleQueued() {
 
 namespace {
 // Bands per thread when a pass is rasterized: enough for the threads to even out what the
-// estimate of each row's work (bandRows) gets wrong, few enough that a large triangle — a shadow
+// estimate of each row's work (splitIntoBands) gets wrong, few enough that a large triangle — a shadow
 // volume's side reaches across the screen — is not set up again in many bands. At least
 // kMinBandRows rows a band.
 constexpr int kBandsPerThread = 3;

@@ -116,7 +116,7 @@ class Renderer {
   bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
   void keepBlock(AssemblyWorkspace& ws);
   bool finishPending(PendingDraw& pending);
-  // A small draw whose assembly waits for the flush (DeferredDraws with Geometry::Kept): its call
+  // A draw whose assembly waits for the flush (DeferredDraws with Geometry::Kept): its call
   // (the state pointing at its pending draw's copy), clip planes, and its entry in pending_.
   struct QueuedAssembly {
     DrawCall call;
@@ -177,8 +177,9 @@ class Renderer {
 // not be read or changed by other means (clears, callbacks) while one lives.
 //
 // With Geometry::Kept the maker also keeps every draw's vertices and indices until it ends (not
-// refilled between draws): small draws are then not even assembled at once, but all together at
-// the end, on all threads — the city's 129 casters' volumes, a few dozen triangles each.
+// refilled between draws): the draws are then not even assembled at once, but all together at the
+// end, on all threads — the city's 129 casters' volumes, a few dozen triangles each, or the
+// pumpkins' dozen large meshes, without a pool run per draw.
 class DeferredDraws {
  public:
   enum class Geometry { Refilled, Kept };
