@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "raster/clear.h"
 #include "raster/renderer.h"
@@ -156,30 +157,37 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   state.depthClamp = depthClamp;
   clearDepth(fb, state, 1.0);
 
-  std::vector<ClipVertex> vertices;
-  std::vector<uint32_t> indices;
+  // Every caster's vertices in the light's clip space, on all threads, kept until the draws are
+  // rasterized: they are then assembled together too (DeferredDraws' Geometry::Kept).
+  std::vector<size_t> casters;
+  for (size_t i = 0; i < instances.size(); ++i)
+    if (instances[i].shadowMesh && withinRange(light, instances[i].shadowBounds)) casters.push_back(i);
+  std::vector<std::vector<ClipVertex>> vertices(casters.size());
+  std::vector<std::vector<uint32_t>> indices(casters.size());
+  renderer.parallelFor(int(casters.size()), [&](int c) {
+    const Instance& inst = instances[casters[size_t(c)]];
+    const VertexTransform xf{view * inst.world, projection};
+    const Mesh& mesh = *inst.shadowMesh;
+    std::vector<ClipVertex>& v = vertices[size_t(c)];
+    v.resize(mesh.positions.size());
+    for (size_t k = 0; k < mesh.positions.size(); ++k) v[k].position = xf.toClip(glm::dvec4(mesh.positions[k], 1.0));
+    if (clipNear > 0.0) {
+      appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, v, indices[size_t(c)]);
+    } else {
+      static_assert(sizeof(glm::uvec3) == 3 * sizeof(uint32_t));
+      indices[size_t(c)].resize(3 * mesh.triangles.size());
+      std::memcpy(indices[size_t(c)].data(), mesh.triangles.data(), sizeof(uint32_t) * indices[size_t(c)].size());
+    }
+  });
   {
-    // Depth only: no shader, so `vertices` may be refilled before the draws are rasterized.
-    const DeferredDraws deferred(renderer);
-    for (size_t i = 0; i < instances.size(); ++i) {
-      const Instance& inst = instances[i];
-      if (!inst.shadowMesh || !withinRange(light, inst.shadowBounds)) continue;
-      const VertexTransform xf{view * inst.world, projection};
-      const Mesh& mesh = *inst.shadowMesh;
-      vertices.resize(mesh.positions.size());
-      for (size_t v = 0; v < mesh.positions.size(); ++v) vertices[v].position = xf.toClip(glm::dvec4(mesh.positions[v], 1.0));
-      indices.clear();
-      if (clipNear > 0.0) {
-        appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, vertices, indices);
-      } else {
-        for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
-      }
+    const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
+    for (size_t c = 0; c < casters.size(); ++c) {
       RenderState mirrored;
       DrawCall call;
-      call.state = &stateFor(state, inst, mirrored);
-      call.vertices = vertices;
-      call.indices = indices;
-      call.tag = drawTag(DrawKind::ShadowMap, int(i));
+      call.state = &stateFor(state, instances[casters[c]], mirrored);
+      call.vertices = vertices[c];
+      call.indices = indices[c];
+      call.tag = drawTag(DrawKind::ShadowMap, int(casters[c]));
       renderer.draw(call);
     }
   }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <deque>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -140,37 +139,43 @@ std::vector<ClipVertex> gouraudCameraVertices(const PreparedInstance& p, const L
 // to be lit per pixel: more lights than ShadowMappedGouraudShader has varyings for.
 bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
                     const std::vector<PreparedInstance>& prepared, const std::vector<std::unique_ptr<LightShadow>>& shadows) {
-  // Both outlive the deferred draws.
-  std::vector<std::unique_ptr<FragmentShader>> keep;
-  std::deque<std::vector<ClipVertex>> litVertices;
+  std::vector<const LightShadow*> active;
+  for (const auto& s : shadows) active.push_back(s.get());
+  const bool fitGouraud = active.size() <= size_t(ShadowMappedGouraudShader::kMaxLights);
+  std::vector<LightingSetup> lighting(prepared.size());
+  std::vector<uint8_t> gouraud(prepared.size());
   bool gouraudKept = true;
+  for (size_t i = 0; i < prepared.size(); ++i) {
+    const Instance& inst = *prepared[i].instance;
+    const Material& material = scene.materials.at(size_t(inst.material));
+    lighting[i].material = toPhongMaterial(material);
+    lighting[i].globalAmbient = scene.ambient;
+    lighting[i].eye = view.eye;
+    // A light out of range (000 §4.3.1) contributes nothing but its share of the ambient.
+    for (const LightShadow* s : active)
+      lighting[i].lights.push_back(withinRange(s->light, inst.worldBounds) ? toPhongLight(s->light) : PhongLight{glm::dvec4(0.0)});
+    const bool wants = material.shading == ShadingModel::Gouraud && !active.empty();
+    gouraud[i] = wants && fitGouraud;
+    gouraudKept = gouraudKept && (!wants || fitGouraud);
+  }
+  // The Gouraud materials' vertices lit on all threads; they outlive the deferred draws.
+  std::vector<std::vector<ClipVertex>> litVertices(prepared.size());
+  renderer.parallelFor(int(prepared.size()), [&](int i) {
+    if (gouraud[size_t(i)])
+      litVertices[size_t(i)] = gouraudCameraVertices(prepared[size_t(i)], lighting[size_t(i)], 1.0 / double(active.size()));
+  });
+  std::vector<std::unique_ptr<FragmentShader>> keep;  // outlives the deferred draws too
   const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // the prepared geometry stays put
-  for (const PreparedInstance& p : prepared) {
-    const Material& material = scene.materials.at(size_t(p.instance->material));
-    LightingSetup lighting;
-    lighting.material = toPhongMaterial(material);
-    lighting.globalAmbient = scene.ambient;
-    lighting.eye = view.eye;
-    std::vector<const LightShadow*> active;
-    for (const auto& s : shadows) {
-      active.push_back(s.get());
-      // A light out of range (000 §4.3.1) contributes nothing but its share of the ambient.
-      lighting.lights.push_back(withinRange(s->light, p.instance->worldBounds) ? toPhongLight(s->light) : PhongLight{glm::dvec4(0.0)});
-    }
+  for (size_t i = 0; i < prepared.size(); ++i) {
+    const PreparedInstance& p = prepared[i];
     RenderState mirrored;
     DrawCall call;
     call.state = &stateFor(state, *p.instance, mirrored);
-    call.vertices = p.vertices;
+    call.vertices = gouraud[i] ? std::span<const ClipVertex>(litVertices[i]) : std::span<const ClipVertex>(p.vertices);
     call.indices = p.indices;
     call.tag = drawTag(DrawKind::Lit, p.index);
-    const bool gouraud = material.shading == ShadingModel::Gouraud && !active.empty();
-    if (gouraud && active.size() <= size_t(ShadowMappedGouraudShader::kMaxLights)) {
-      call.vertices = litVertices.emplace_back(gouraudCameraVertices(p, lighting, 1.0 / double(active.size())));
-      keep.push_back(std::make_unique<ShadowMappedGouraudShader>(std::move(active)));
-    } else {
-      gouraudKept = gouraudKept && !gouraud;
-      keep.push_back(std::make_unique<ShadowMappedShader>(lighting, std::move(active)));
-    }
+    if (gouraud[i]) keep.push_back(std::make_unique<ShadowMappedGouraudShader>(active));
+    else keep.push_back(std::make_unique<ShadowMappedShader>(lighting[i], active));
     call.shader = keep.back().get();
     renderer.draw(call);
   }
