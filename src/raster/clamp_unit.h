@@ -12,6 +12,21 @@ namespace shadowref {
 
 using ClampLanes = double __attribute__((vector_size(32)));
 
+#if defined(__SSE2__) && !defined(__AVX__)
+namespace detail {
+// f on each half of the four lanes: SSE2's instructions take two doubles.
+template <class Fn>
+inline ClampLanes byHalves(ClampLanes v, Fn f) {
+  __m128d half[2];
+  std::memcpy(half, &v, sizeof half);
+  for (__m128d& h : half) h = f(h);
+  ClampLanes out;
+  std::memcpy(&out, half, sizeof out);
+  return out;
+}
+}  // namespace detail
+#endif
+
 // c < 0 ? 0 : (1 < c ? 1 : c) per lane, as std::clamp: NaN and -0.0 pass through unchanged.
 // x86's MAXPD(a, b) is a > b ? a : b and MINPD(a, b) is a < b ? a : b, each the second operand
 // when unordered, so MAX(0, c) is c < 0 ? 0 : c and MIN(1, x) is 1 < x ? 1 : x, exactly.
@@ -19,12 +34,7 @@ inline ClampLanes clampUnit(ClampLanes c) {
 #if defined(__AVX__)
   return __m256d(_mm256_min_pd(_mm256_set1_pd(1.0), _mm256_max_pd(_mm256_setzero_pd(), __m256d(c))));
 #elif defined(__SSE2__)
-  __m128d half[2];
-  std::memcpy(half, &c, sizeof half);
-  for (__m128d& h : half) h = _mm_min_pd(_mm_set1_pd(1.0), _mm_max_pd(_mm_setzero_pd(), h));
-  ClampLanes out;
-  std::memcpy(&out, half, sizeof out);
-  return out;
+  return detail::byHalves(c, [](__m128d h) { return _mm_min_pd(_mm_set1_pd(1.0), _mm_max_pd(_mm_setzero_pd(), h)); });
 #else
   const ClampLanes low = c < 0.0 ? ClampLanes{} : c;
   return 1.0 < low ? ClampLanes{} + 1.0 : low;
@@ -37,12 +47,7 @@ inline ClampLanes clampUnitOrZero(ClampLanes z) {
 #if defined(__AVX__)
   return __m256d(_mm256_min_pd(_mm256_set1_pd(1.0), _mm256_max_pd(__m256d(z), _mm256_setzero_pd())));
 #elif defined(__SSE2__)
-  __m128d half[2];
-  std::memcpy(half, &z, sizeof half);
-  for (__m128d& h : half) h = _mm_min_pd(_mm_set1_pd(1.0), _mm_max_pd(h, _mm_setzero_pd()));
-  ClampLanes out;
-  std::memcpy(&out, half, sizeof out);
-  return out;
+  return detail::byHalves(z, [](__m128d h) { return _mm_min_pd(_mm_set1_pd(1.0), _mm_max_pd(h, _mm_setzero_pd())); });
 #else
   return z > 0.0 ? (1.0 < z ? ClampLanes{} + 1.0 : z) : ClampLanes{};
 #endif
