@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -59,5 +60,13 @@ struct Mesh {
 
   Aabb bounds;  // object space
 };
+
+// The triangles as one flat index list, three per triangle, as draw calls take them: one copy
+// of the block (a glm::uvec3 is three uint32_t without padding).
+inline void copyTriangleIndices(const Mesh& mesh, std::vector<uint32_t>& out) {
+  static_assert(sizeof(glm::uvec3) == 3 * sizeof(uint32_t));
+  out.resize(3 * mesh.triangles.size());
+  std::memcpy(out.data(), mesh.triangles.data(), out.size() * sizeof(uint32_t));
+}
 
 }  // namespace shadowref

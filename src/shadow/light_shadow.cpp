@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstring>
 
 #include "raster/clear.h"
 #include "raster/renderer.h"
@@ -174,9 +173,7 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
     if (clipNear > 0.0) {
       appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, v, indices[size_t(c)]);
     } else {
-      static_assert(sizeof(glm::uvec3) == 3 * sizeof(uint32_t));
-      indices[size_t(c)].resize(3 * mesh.triangles.size());
-      std::memcpy(indices[size_t(c)].data(), mesh.triangles.data(), sizeof(uint32_t) * indices[size_t(c)].size());
+      copyTriangleIndices(mesh, indices[size_t(c)]);
     }
   });
   {

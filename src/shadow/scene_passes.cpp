@@ -1,7 +1,6 @@
 #include "shadow/scene_passes.h"
 
 #include <cmath>
-#include <cstring>
 #include <deque>
 #include <memory>
 #include <numbers>
@@ -59,9 +58,7 @@ std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& inst
     p.vertices.resize(mesh.positions.size());
     for (size_t first = 0; first < mesh.positions.size(); first += kVertexRange)
       ranges.push_back({i, first, std::min(mesh.positions.size(), first + kVertexRange)});
-    static_assert(sizeof(glm::uvec3) == 3 * sizeof(uint32_t));  // the triangles are the index list
-    p.indices.resize(mesh.triangles.size() * 3);
-    std::memcpy(p.indices.data(), mesh.triangles.data(), p.indices.size() * sizeof(uint32_t));
+    copyTriangleIndices(mesh, p.indices);
   }
   auto prepare = [&](int r) {
     const Range& range = ranges[size_t(r)];
