@@ -290,7 +290,7 @@ void csvRow(std::ofstream& csv, const std::string& section, const SceneCase& c, 
 // Determinism: every buffer byte-identical for 1, 2 and 8 threads.
 
 template <class T>
-bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+bool sameBytes(const PixelVector<T>& a, const PixelVector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
@@ -339,8 +339,8 @@ struct Agreement {
 };
 
 Agreement agreement(const Framebuffer& a, const Framebuffer& b) {
-  const std::vector<glm::vec4>& ca = a.color();
-  const std::vector<glm::vec4>& cb = b.color();
+  const PixelVector<glm::vec4>& ca = a.color();
+  const PixelVector<glm::vec4>& cb = b.color();
   if (ca.size() != cb.size()) throw std::runtime_error("agreement: frames of different sizes");
   Agreement r;
   size_t over = 0;

@@ -101,7 +101,7 @@ NamedChannel NamedChannel::uintChannel(std::string name, std::vector<uint32_t> v
   return c;
 }
 
-NamedChannel NamedChannel::stencilChannel(std::string name, const std::vector<uint8_t>& stencil) {
+NamedChannel NamedChannel::stencilChannel(std::string name, std::span<const uint8_t> stencil) {
   return uintChannel(std::move(name), std::vector<uint32_t>(stencil.begin(), stencil.end()));
 }
 

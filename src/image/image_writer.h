@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,7 @@ struct NamedChannel {
   static NamedChannel floatChannel(std::string name, std::vector<float> values);
   static NamedChannel uintChannel(std::string name, std::vector<uint32_t> values);
   // A stencil buffer (e.g. one light's counts) as a UINT32 channel, e.g. "stencil.L0".
-  static NamedChannel stencilChannel(std::string name, const std::vector<uint8_t>& stencil);
+  static NamedChannel stencilChannel(std::string name, std::span<const uint8_t> stencil);
   size_t size() const { return kind == ChannelKind::Float ? floats.size() : uints.size(); }
 };
 

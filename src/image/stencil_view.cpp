@@ -67,7 +67,7 @@ void fillRect(Image8& image, int x0, int y0, int w, int h, Rgb colour) {
     }
 }
 
-void checkStencil(const std::vector<uint8_t>& stencil, int width, int height) {
+void checkStencil(std::span<const uint8_t> stencil, int width, int height) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("stencil size must be positive");
   if (stencil.size() != size_t(width) * size_t(height))
     throw std::invalid_argument("stencil has " + std::to_string(stencil.size()) + " values for " +
@@ -104,7 +104,7 @@ Rgb stencilColour(int count) {
   return c;
 }
 
-Image8 stencilFalseColour(const std::vector<uint8_t>& stencil, int width, int height,
+Image8 stencilFalseColour(std::span<const uint8_t> stencil, int width, int height,
                           const StencilViewOptions& options) {
   checkStencil(stencil, width, height);
   const int s = std::max(1, options.pixelScale);
@@ -158,7 +158,7 @@ Image8 stencilFalseColour(const Framebuffer& fb, const StencilViewOptions& optio
   return stencilFalseColour(fb.stencil(), fb.width(), fb.height(), options);
 }
 
-void writeStencilPng(const std::vector<uint8_t>& stencil, int width, int height, const std::string& path,
+void writeStencilPng(std::span<const uint8_t> stencil, int width, int height, const std::string& path,
                      const StencilViewOptions& options) {
   writePng8(stencilFalseColour(stencil, width, height, options), path);
 }
@@ -182,7 +182,7 @@ void appendCell(std::string& out, const std::string& text, size_t width) {
 
 }  // namespace
 
-std::string stencilGrid(const std::vector<uint8_t>& stencil, int fbWidth, int fbHeight, int x, int y, int w, int h,
+std::string stencilGrid(std::span<const uint8_t> stencil, int fbWidth, int fbHeight, int x, int y, int w, int h,
                         bool signedCounts) {
   checkStencil(stencil, fbWidth, fbHeight);
   if (w <= 0 || h <= 0) throw std::invalid_argument("stencil region needs a positive width and height");

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,11 +34,11 @@ std::array<uint8_t, 3> stencilColour(int count);
 // The picture, top row first: the stencil (framebuffer order, row 0 at the bottom, so it is flipped
 // like every other image) and below it, on a dark grey strip, one framed swatch per count present
 // with its number ("+1"/"-1" when signed), in increasing order, wrapped into rows.
-Image8 stencilFalseColour(const std::vector<uint8_t>& stencil, int width, int height,
+Image8 stencilFalseColour(std::span<const uint8_t> stencil, int width, int height,
                           const StencilViewOptions& options = {});
 Image8 stencilFalseColour(const Framebuffer& fb, const StencilViewOptions& options = {});
 
-void writeStencilPng(const std::vector<uint8_t>& stencil, int width, int height, const std::string& path,
+void writeStencilPng(std::span<const uint8_t> stencil, int width, int height, const std::string& path,
                      const StencilViewOptions& options = {});
 void writeStencilPng(const Framebuffer& fb, const std::string& path, const StencilViewOptions& options = {});
 
@@ -46,7 +47,7 @@ void writeStencilPng(const Framebuffer& fb, const std::string& path, const Stenc
 // starting with its y label. Numbers are right-aligned in equal columns. The region is clipped to
 // the framebuffer (the title says so); w or h <= 0, or a region wholly outside, throws
 // std::invalid_argument.
-std::string stencilGrid(const std::vector<uint8_t>& stencil, int fbWidth, int fbHeight, int x, int y, int w,
+std::string stencilGrid(std::span<const uint8_t> stencil, int fbWidth, int fbHeight, int x, int y, int w,
                         int h, bool signedCounts = false);
 std::string stencilGrid(const Framebuffer& fb, int x, int y, int w, int h, bool signedCounts = false);
 

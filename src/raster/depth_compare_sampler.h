@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raster/framebuffer.h"
 #include "raster/render_state.h"
 
 namespace shadowref {
@@ -18,7 +19,7 @@ namespace shadowref {
 // which is what a Float32 depth buffer holds: a rendered map becomes a texture without a copy.
 struct DepthTexture {
   int width = 0, height = 0;
-  std::vector<uint32_t> bits;
+  PixelVector<uint32_t> bits;
 
   float at(int x, int y) const { return std::bit_cast<float>(bits[index(x, y)]); }
   void set(int x, int y, float depth) { bits[index(x, y)] = std::bit_cast<uint32_t>(depth); }

@@ -7,6 +7,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -40,6 +44,32 @@ struct DepthCodec {
   double resolvableDifference(double zMax) const;
 };
 
+// std::allocator, except that resize(n) without a value leaves the new elements of a trivial type
+// unwritten (default-initialized) instead of zeroing them: a clear of a whole new buffer then
+// writes each byte once, on all the renderer's threads, rather than after a zeroing on one. Whoever
+// resizes without a value writes every element before anything reads it; everything else (assign,
+// resize with a value, copies) works as with std::allocator.
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  using std::allocator<T>::allocator;
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// A buffer's pixels.
+template <class T>
+using PixelVector = std::vector<T, UninitializedAllocator<T>>;
+
 class Framebuffer {
  public:
   Framebuffer(int width, int height, DepthFormat depthFormat = DepthFormat::Float32);
@@ -57,18 +87,19 @@ class Framebuffer {
   bool hasStencil() const { return !stencil_.empty(); }
   bool hasAccum() const { return !accum_.empty(); }
 
+  size_t pixelCount() const { return size_t(width_) * size_t(height_); }
   size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
 
   // Colour is RGBA float, clamped to [0, 1] on every write like a fixed-point GL colour buffer.
-  std::vector<glm::vec4>& color() { return color_; }
-  const std::vector<glm::vec4>& color() const { return color_; }
-  std::vector<uint32_t>& depthCodes() { return depth_; }
-  const std::vector<uint32_t>& depthCodes() const { return depth_; }
-  std::vector<uint8_t>& stencil() { return stencil_; }
-  const std::vector<uint8_t>& stencil() const { return stencil_; }
+  PixelVector<glm::vec4>& color() { return color_; }
+  const PixelVector<glm::vec4>& color() const { return color_; }
+  PixelVector<uint32_t>& depthCodes() { return depth_; }
+  const PixelVector<uint32_t>& depthCodes() const { return depth_; }
+  PixelVector<uint8_t>& stencil() { return stencil_; }
+  const PixelVector<uint8_t>& stencil() const { return stencil_; }
   // Accumulation is RGBA float and unclamped (GL keeps signed values in [-1, 1]).
-  std::vector<glm::vec4>& accum() { return accum_; }
-  const std::vector<glm::vec4>& accum() const { return accum_; }
+  PixelVector<glm::vec4>& accum() { return accum_; }
+  const PixelVector<glm::vec4>& accum() const { return accum_; }
 
   glm::vec4 colorAt(int x, int y) const { return color_[index(x, y)]; }
   double depthAt(int x, int y) const { return depthCodec_.decode(depth_[index(x, y)]); }
@@ -78,10 +109,10 @@ class Framebuffer {
  private:
   int width_, height_;
   DepthCodec depthCodec_;
-  std::vector<glm::vec4> color_;
-  std::vector<uint32_t> depth_;
-  std::vector<uint8_t> stencil_;
-  std::vector<glm::vec4> accum_;
+  PixelVector<glm::vec4> color_;
+  PixelVector<uint32_t> depth_;
+  PixelVector<uint8_t> stencil_;
+  PixelVector<glm::vec4> accum_;
 };
 
 }  // namespace shadowref

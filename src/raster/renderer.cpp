@@ -49,8 +49,7 @@ Renderer::Renderer(Framebuffer& framebuffer, int threads)
 
 void Renderer::setThreads(int threads) {
   if (threads <= 0) threads = defaultThreadCount();
-  if (threads == 1) pool_.reset();
-  else if (!pool_ || pool_->threadCount() != threads) pool_ = std::make_unique<ThreadPool>(threads);
+  pool_ = threadPoolForThisThread(threads);
 }
 
 double guardBandFor(const Viewport& vp) {
@@ -229,7 +228,7 @@ void Renderer::draw(const DrawCall& call) {
   }
   const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
   if (assembly_.size() < chunks) assembly_.resize(chunks);
-  prepareCorners(call, planes, corners_, pool_.get());
+  prepareCorners(call, planes, corners_, pool_);
   for (size_t c = 0; c < chunks; ++c) assembly_[c].corners = &corners_;
   if (chunks == 1) {
     assembleRange(call, 0, triangleCount, planes, varyingCount, assembly_[0]);

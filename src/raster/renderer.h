@@ -59,6 +59,10 @@ class Renderer {
   // are done: for independent work between draws, such as building each caster's volume. The
   // tasks must not draw.
   void parallelFor(int count, const std::function<void(int)>& task);
+  // parallelFor as a ParallelFor: for the clears (clear.h), which fill parts of rows at once.
+  ParallelFor parallel() {
+    return [this](int count, const std::function<void(int)>& task) { parallelFor(count, task); };
+  }
   const RasterStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
 
@@ -131,7 +135,7 @@ class Renderer {
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 
   Framebuffer& fb_;
-  std::unique_ptr<ThreadPool> pool_;
+  ThreadPool* pool_ = nullptr;  // the calling thread's (threadPoolForThisThread); nullptr: one thread
   // A band's counters, on cache lines of their own: the band's thread adds to them per triangle
   // (per chunk of fragments in a shaded pass), and a line shared with the next band's counters
   // would travel between the threads at every addition.

@@ -1,6 +1,8 @@
 #include "raster/thread_pool.h"
 
 #include <chrono>
+#include <map>
+#include <memory>
 
 namespace shadowref {
 
@@ -25,6 +27,14 @@ inline void relax(int step) {
   std::this_thread::yield();
 }
 }  // namespace
+
+ThreadPool* threadPoolForThisThread(int threads) {
+  if (threads <= 1) return nullptr;
+  thread_local std::map<int, std::unique_ptr<ThreadPool>> pools;
+  std::unique_ptr<ThreadPool>& pool = pools[threads];
+  if (!pool) pool = std::make_unique<ThreadPool>(threads);
+  return pool.get();
+}
 
 int defaultThreadCount() {
   const unsigned n = std::thread::hardware_concurrency();

@@ -58,6 +58,17 @@ class ThreadPool {
   std::exception_ptr error_;  // the first exception of the current run, under mutex_
 };
 
+// Runs task(i) for i in [0, count), on several threads or on this one (Renderer::parallelFor); an
+// empty one: on this thread. What work outside the renderer's draws (a clear) is handed.
+using ParallelFor = std::function<void(int count, const std::function<void(int)>& task)>;
+
+// The pool of `threads` threads that the calling thread keeps for its renderers (nullptr for 1):
+// made at the first call and kept until the calling thread ends, so that a program rendering frame
+// after frame — each frame a Renderer, each shadow map another — starts no threads per frame (a
+// fresh worker also starts cold: its first bands begin late). One per calling thread, because a
+// pool serves one run at a time from one thread; renderers of one thread never run at once.
+ThreadPool* threadPoolForThisThread(int threads);
+
 // The number of threads "0 = all cores" means.
 int defaultThreadCount();
 

@@ -44,8 +44,8 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
   state.cull = CullMode::Back;
   PassClock clock(result);
   clock.run("clear", [&] {
-    clearColor(renderer.framebuffer(), state, glm::vec4(glm::vec3(scene.background), 1.0f));
-    clearDepth(renderer.framebuffer(), state, 1.0);
+    clearColor(renderer.framebuffer(), state, glm::vec4(glm::vec3(scene.background), 1.0f), renderer.parallel());
+    clearDepth(renderer.framebuffer(), state, 1.0, renderer.parallel());
   });
   clock.run("lit", [&] { drawLit(renderer, state, scene, view, prepared, scene.lights, true); });
   if (options.onPass) options.onPass("01-lit", renderer.framebuffer());

@@ -49,7 +49,7 @@ struct FrameResult {
   std::vector<std::string> notes;  // per-light statistics lines for --stats
   // With FrameOptions::keepStencil: the stencil counts after each light's volume pass, and the
   // light's name ("L0", "L1", ... in the order of the expanded light list).
-  std::vector<std::vector<uint8_t>> stencilPerLight;
+  std::vector<PixelVector<uint8_t>> stencilPerLight;
   std::vector<std::string> stencilLightNames;
   // With FrameOptions::keepShadowMaps: each light's depth map(s), named "L0" or "L0.face3".
   std::vector<DepthTexture> shadowMaps;

@@ -261,8 +261,8 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
         result.notes.push_back(note.str());
       }
     }
-    clearColor(fb, state, glm::vec4(glm::vec3(scene.background), 1.0f));
-    clearDepth(fb, state, 1.0);
+    clearColor(fb, state, glm::vec4(glm::vec3(scene.background), 1.0f), renderer.parallel());
+    clearDepth(fb, state, 1.0, renderer.parallel());
     if (!drawCameraPass(renderer, state, scene, view, prepared, shadows) && k == 0)
       result.notes.push_back("Gouraud materials lit per pixel: more than " +
                              std::to_string(ShadowMappedGouraudShader::kMaxLights) + " shadow-mapped lights");

@@ -56,9 +56,9 @@ Readback renderWithShadowref(const Scenario& scenario) {
   Readback r;
   r.width = fb.width();
   r.height = fb.height();
-  r.color = fb.color();
-  r.depth24 = fb.depthCodes();  // Unorm24 codes are the 24-bit values themselves
-  r.stencil = fb.stencil();
+  r.color.assign(fb.color().begin(), fb.color().end());
+  r.depth24.assign(fb.depthCodes().begin(), fb.depthCodes().end());  // Unorm24 codes are the 24-bit values
+  r.stencil.assign(fb.stencil().begin(), fb.stencil().end());
   return r;
 }
 

@@ -6,6 +6,7 @@
 // point light at (0, 10, 0), a ground slab with its top at y = -2. The light sees the box's top
 // face only; the silhouette is the top face's rim at y = 6, and the side through the rim edge
 // x = 1 is the plane 4x + y = 10 (it contains (1, 6, z) and runs along (1, -4, 0)).
+#include <span>
 #include <catch2/catch.hpp>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -36,7 +37,7 @@ Scene boxUnderLight(const glm::dvec3& eye, const glm::dvec3& target) {
   return scene;
 }
 
-size_t differing(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+size_t differing(std::span<const uint8_t> a, std::span<const uint8_t> b) {
   size_t n = 0;
   for (size_t i = 0; i < a.size(); ++i) n += a[i] != b[i];
   return n;

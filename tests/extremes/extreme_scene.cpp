@@ -1,5 +1,6 @@
 #include "extremes/extreme_scene.h"
 
+#include <span>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -78,7 +79,7 @@ FrameResult renderStencil(const Scene& scene, ShadowMethod method) {
   return renderFrame(scene, options);
 }
 
-Agreement compare(const std::vector<uint8_t>& stencil, const oracle::OracleImage& img, ShadowMethod method) {
+Agreement compare(std::span<const uint8_t> stencil, const oracle::OracleImage& img, ShadowMethod method) {
   const std::vector<int>& counts = method == ShadowMethod::ZPass ? img.zpass : img.zfail;
   Agreement a;
   a.pixels = stencil.size();

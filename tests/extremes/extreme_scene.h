@@ -7,6 +7,7 @@
 // rasterizer, so what differs is the rasterizer's numerics.
 #pragma once
 
+#include <span>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -59,7 +60,7 @@ oracle::OracleImage castFor(const Scene& scene, size_t light = 0);
 FrameResult renderStencil(const Scene& scene, ShadowMethod method);
 
 // The oracle count to compare with: z-fail's for ZFail and Auto, z-pass's for ZPass.
-Agreement compare(const std::vector<uint8_t>& stencil, const oracle::OracleImage& img, ShadowMethod method);
+Agreement compare(std::span<const uint8_t> stencil, const oracle::OracleImage& img, ShadowMethod method);
 Agreement renderAndCompare(const Scene& scene, ShadowMethod method, size_t light = 0);
 
 std::string describe(const Agreement& a);

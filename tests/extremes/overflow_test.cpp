@@ -6,6 +6,7 @@
 // where the count is a non-zero multiple of 256. Saturating ops (INCR / DECR) lose the count as
 // soon as it leaves [0, 255]; in two-sided stencil the increments and decrements of one pixel
 // arrive in primitive order, so a DECR can clamp at 0 before its INCR arrives.
+#include <span>
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -39,7 +40,7 @@ struct OverflowCounts {
   size_t maskWrong = 0, maskWrongAt0Mod256 = 0;  // off-edge surface pixels with the wrong shadow test
 };
 
-OverflowCounts tally(const std::vector<uint8_t>& stencil, const oracle::OracleImage& img, int expectAt300) {
+OverflowCounts tally(std::span<const uint8_t> stencil, const oracle::OracleImage& img, int expectAt300) {
   OverflowCounts c;
   for (size_t i = 0; i < stencil.size(); ++i) {
     if (img.nearEdge[i]) continue;

@@ -145,7 +145,7 @@ TEST_CASE("EXR extras add per-light stencil channels as UINT32 and float channel
   Framebuffer fb(2, 1);
   fb.ensureStencil();
   ExrExtras extras;
-  extras.channels.push_back(NamedChannel::stencilChannel("stencil.L0", {3, 4}));
+  extras.channels.push_back(NamedChannel::stencilChannel("stencil.L0", std::vector<uint8_t>{3, 4}));
   extras.channels.push_back(NamedChannel::uintChannel("stencil.L1", {300, 70000}));
   extras.channels.push_back(NamedChannel::floatChannel("shadow", {0.4f, 1.0f}));
   const std::string path = dir.file("extras.exr");

@@ -1,5 +1,6 @@
 // glClear semantics (GL 2.1 §4.2.3): clear values clamped to the buffer's range, the scissor box
 // limits the clear, colour mask / depth mask / stencil write mask apply.
+#include <functional>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -62,4 +63,59 @@ TEST_CASE("clear respects colour mask, depth mask and the stencil write mask", "
   CHECK(fb.colorAt(1, 0) == glm::vec4(0.25f, 0.75f, 0.5f, 0.25f));
   CHECK(fb.depthAt(1, 0) == 0.5);
   CHECK(int(fb.stencilAt(1, 0)) == 0xA5);  // (0xAA & 0xF0) | (0x55 & 0x0F)
+}
+
+// A ParallelFor that runs the parts backwards and records them: the order must not matter, and
+// a clear of many pixels must be cut into parts at all for the threads to share it.
+struct RecordingParallel {
+  std::vector<int> counts;
+  ParallelFor fn() {
+    return [this](int count, const std::function<void(int)>& task) {
+      counts.push_back(count);
+      for (int i = count - 1; i >= 0; --i) task(i);
+    };
+  }
+};
+
+TEST_CASE("a clear cut into parts for threads writes every pixel of a new buffer, and only the scissor box later",
+          "[raster][clear][threads]") {
+  // 517 x 300 (155 100 pixels): parts of at least 2^15 pixels, so 4 parts of 75 rows.
+  Framebuffer fb(517, 300);
+  RenderState s = fullViewportState(fb);
+  RecordingParallel parallel;
+  // New buffers are allocated unwritten and then filled part by part: every pixel must come out
+  // with the clear value (the allocator's leftovers would show up here or under the sanitizers).
+  clearColor(fb, s, {0.25f, 0.5f, 0.75f, 1.0f}, parallel.fn());
+  clearDepth(fb, s, 0.5, parallel.fn());
+  clearStencil(fb, s, 3, parallel.fn());
+  clearAccum(fb, s, {-0.5f, 0.0f, 0.5f, 1.0f}, parallel.fn());
+  CHECK(parallel.counts == std::vector<int>{4, 4, 4, 4});
+  size_t wrong = 0;
+  for (int y = 0; y < 300; ++y)
+    for (int x = 0; x < 517; ++x)
+      wrong += fb.colorAt(x, y) != glm::vec4(0.25f, 0.5f, 0.75f, 1.0f) || fb.depthAt(x, y) != 0.5 ||
+               fb.stencilAt(x, y) != 3 || fb.accumAt(x, y) != glm::vec4(-0.5f, 0.0f, 0.5f, 1.0f);
+  CHECK(wrong == 0);
+
+  // A scissored clear: rows 10..209, columns 7..506 (100 000 pixels, 3 parts of rows cut apart).
+  s.scissorTest = true;
+  s.scissor = {7, 10, 500, 200};
+  clearStencil(fb, s, 9, parallel.fn());
+  CHECK(parallel.counts.back() == 3);
+  size_t inside = 0, outside = 0;
+  for (int y = 0; y < 300; ++y)
+    for (int x = 0; x < 517; ++x) {
+      const bool in = x >= 7 && x < 507 && y >= 10 && y < 210;
+      if (fb.stencilAt(x, y) == (in ? 9 : 3)) (in ? inside : outside) += 1;
+    }
+  CHECK(inside == 100000u);
+  CHECK(outside == 517u * 300u - 100000u);
+}
+
+TEST_CASE("a clear of a small buffer is one part, on the calling thread", "[raster][clear][threads]") {
+  Framebuffer fb(160, 128);
+  RecordingParallel parallel;
+  clearDepth(fb, fullViewportState(fb), 1.0, parallel.fn());
+  CHECK(parallel.counts.empty());
+  CHECK(fb.depthAt(159, 127) == 1.0);
 }

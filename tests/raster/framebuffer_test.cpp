@@ -87,9 +87,9 @@ TEST_CASE("a framebuffer allocates each buffer only when asked, cleared to GL's 
   fb.ensureDepth();
   CHECK(fb.hasDepth());
   CHECK_FALSE(fb.hasColor());
-  CHECK(fb.depthCodes() == std::vector<uint32_t>(6, 0xFFFFFFu));
+  CHECK(fb.depthCodes() == PixelVector<uint32_t>(6, 0xFFFFFFu));
   fb.ensureStencil();
-  CHECK(fb.stencil() == std::vector<uint8_t>(6, 0));
+  CHECK(fb.stencil() == PixelVector<uint8_t>(6, 0));
   CHECK(fb.index(2, 1) == 5u);  // row 0 is the bottom row, x fastest
   CHECK_THROWS(Framebuffer(0, 4));
 }

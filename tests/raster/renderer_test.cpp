@@ -100,8 +100,8 @@ TEST_CASE("canonical rotation: a triangle in any rotation gives bit-identical de
         s.depthFunc = CompareFunc::Always;
         Renderer r(fb);
         draw(r, s, rotation(triangles[i], k));
-        depth[k] = fb.depthCodes();
-        coverage[k] = fb.stencil();
+        depth[k].assign(fb.depthCodes().begin(), fb.depthCodes().end());
+        coverage[k].assign(fb.stencil().begin(), fb.stencil().end());
       }
       CHECK(depth[1] == depth[0]);
       CHECK(depth[2] == depth[0]);
@@ -124,7 +124,7 @@ TEST_CASE("front-cap property: redrawing a triangle in another rotation fails LE
       scene.depthFunc = CompareFunc::Less;
       Renderer r(fb);
       draw(r, scene, rotation(triangles[i], 0));
-      const std::vector<uint8_t> covered = fb.stencil();
+      const PixelVector<uint8_t> covered = fb.stencil();
       for (uint8_t c : covered) pixelsChecked += c;
 
       RenderState volume = scene;  // the volume pass: depth not written, count where depth passes
@@ -184,7 +184,7 @@ void renderRandomFrame(Framebuffer& fb, uint64_t seed) {
 }
 
 template <class T>
-bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+bool sameBytes(const PixelVector<T>& a, const PixelVector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 

@@ -3,6 +3,7 @@
 // caller of run() after the other tasks have finished.
 #include <atomic>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -63,4 +64,21 @@ TEST_CASE("a vertex index out of range is an error with threads too, and nothing
   call.indices = indices;
   CHECK_THROWS_AS(renderer.draw(call), std::out_of_range);
   for (uint8_t v : fb.stencil()) REQUIRE(v == 0);
+}
+
+TEST_CASE("a thread keeps one pool per thread count for its renderers; another thread has its own",
+          "[raster][threads]") {
+  CHECK(threadPoolForThisThread(1) == nullptr);
+  ThreadPool* two = threadPoolForThisThread(2);
+  REQUIRE(two != nullptr);
+  CHECK(two->threadCount() == 2);
+  CHECK(threadPoolForThisThread(2) == two);  // kept: no threads started per frame
+  CHECK(threadPoolForThisThread(3)->threadCount() == 3);
+  ThreadPool* other = nullptr;
+  std::thread([&] { other = threadPoolForThisThread(2); }).join();
+  CHECK(other != two);  // a pool serves one thread's runs at a time
+  Framebuffer fb(8, 8);
+  Renderer a(fb, 2), b(fb, 2);
+  CHECK(a.threads() == 2);
+  CHECK(b.threads() == 2);
 }

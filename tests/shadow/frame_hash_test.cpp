@@ -44,7 +44,7 @@ std::vector<HashCase> hashCases() {
 class Fnv {
  public:
   template <class T>
-  void add(const std::vector<T>& v) {
+  void add(const PixelVector<T>& v) {
     const auto* p = reinterpret_cast<const unsigned char*>(v.data());
     for (size_t i = 0; i < v.size() * sizeof(T); ++i) hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
     hash_ = (hash_ ^ v.size()) * 0x100000001b3ull;

@@ -1,6 +1,7 @@
 // The oracle on hand-computed scenes: a box over a floor under a point light and under a
 // directional light (shadow outline by similar triangles), and a camera inside one or two shadow
 // volumes (z-pass falls short of z-fail by exactly that many).
+#include <span>
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -78,7 +79,7 @@ FloorTally checkFloor(const OracleImage& img, bool (*inShadow)(const glm::dvec3&
   return tally;
 }
 
-size_t countMarked(const std::vector<uint8_t>& v) {
+size_t countMarked(std::span<const uint8_t> v) {
   size_t n = 0;
   for (uint8_t b : v) n += b;
   return n;
@@ -202,10 +203,10 @@ TEST_CASE("oracle: a stencil comparison skips edge pixels and compares counts mo
   img.nearEdge = {0, 0, 1};
   img.hitInstance = {0, 0, -1};
   // -1 wrapped by DECR_WRAP is 255; the third pixel is near an edge and never compared.
-  const StencilComparison zpass = compareStencil(img, {1, 255, 0}, CountKind::ZPass);
+  const StencilComparison zpass = compareStencil(img, std::vector<uint8_t>{1, 255, 0}, CountKind::ZPass);
   CHECK(zpass.compared == 2);
   CHECK(zpass.matches());
-  const StencilComparison zfail = compareStencil(img, {1, 255, 0}, CountKind::ZFail);
+  const StencilComparison zfail = compareStencil(img, std::vector<uint8_t>{1, 255, 0}, CountKind::ZFail);
   CHECK(zfail.mismatches == 1);
   CHECK(zfail.report == "1,0: stencil 255, oracle 2 (hit instance 0)\n");
 }

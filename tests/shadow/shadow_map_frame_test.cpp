@@ -323,7 +323,7 @@ TEST_CASE("shadow map frame: the 16-light accumulation (002 §4.2) equals the av
     const std::vector<Light> positions = expandSoftLight(soft.lights.at(0));
     REQUIRE(positions.size() == 16);
     std::vector<glm::vec4> sum(size_t(soft.width) * size_t(soft.height), glm::vec4(0.0f));
-    std::vector<std::vector<glm::vec4>> singles;
+    std::vector<PixelVector<glm::vec4>> singles;
     for (const Light& position : positions) {
       Scene one = soft;
       one.lights = {position};
@@ -334,7 +334,7 @@ TEST_CASE("shadow map frame: the 16-light accumulation (002 §4.2) equals the av
     // The accumulation buffer's arithmetic: LOAD then ACCUM with the float weight 1/16.
     for (size_t k = 0; k < singles.size(); ++k)
       for (size_t i = 0; i < sum.size(); ++i) sum[i] += singles[k][i] * (1.0f / 16.0f);
-    const std::vector<glm::vec4> accumulated = render(soft).framebuffer.color();
+    const PixelVector<glm::vec4> accumulated = render(soft).framebuffer.color();
     double worst = 0.0;
     for (size_t i = 0; i < sum.size(); ++i)
       for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(accumulated[i][c]) - double(sum[i][c])));

@@ -1,3 +1,4 @@
+#include <span>
 #include <catch2/catch.hpp>
 
 #include <set>
@@ -25,7 +26,7 @@ std::vector<SilhouetteEdge> silhouetteOf(const Mesh& mesh, const glm::dvec4& lig
 // Independent of every algorithm: for each pair of triangle corners a -> b, look through ALL
 // triangles for the one running b -> a (O(n²)); silhouette when the first faces and the other does
 // not, or when there is no other.
-std::vector<testing::EdgeKey> bruteForceSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing) {
+std::vector<testing::EdgeKey> bruteForceSilhouette(const Mesh& mesh, std::span<const uint8_t> facing) {
   std::vector<testing::EdgeKey> out;
   const auto& T = mesh.weldedTriangles;
   for (uint32_t t = 0; t < T.size(); ++t) {

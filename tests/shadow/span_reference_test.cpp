@@ -68,7 +68,7 @@ TEST_CASE("a Gouraud material's ambient pass is its exact ambient term", "[spans
   std::vector<glm::vec4> allowed;
   for (const Material& m : scene.materials) allowed.push_back(glm::vec4(glm::vec3(scene.ambient * m.ambient), 1.0f));
   FrameOptions frame;
-  std::vector<glm::vec4> ambient;
+  PixelVector<glm::vec4> ambient;
   frame.onPass = [&](const std::string& pass, const Framebuffer& fb) {
     if (pass == "01-ambient") ambient = fb.color();
   };

@@ -13,6 +13,7 @@
 // exactly as volume_renderer.cpp makes them (PreparedInstance::transform.toClip of the volume's
 // object-space vertices), over the depth buffer of the frame renderer's ambient pass. Counts are
 // compared as 8-bit wrapping values, i.e. modulo 256, on every pixel.
+#include <span>
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -122,7 +123,7 @@ RenderState backMinusFrontState(const RenderState& base) {
 
 // Draws `volumes` with `states` (each volume with every state in turn, as the renderer does)
 // into a copy of `depthSource` with the stencil cleared; returns the stencil.
-std::vector<uint8_t> countStencil(const Framebuffer& depthSource, const std::vector<ClipVolume>& volumes,
+PixelVector<uint8_t> countStencil(const Framebuffer& depthSource, const std::vector<ClipVolume>& volumes,
                                   const std::vector<RenderState>& states) {
   Framebuffer fb = depthSource;
   fb.ensureStencil();
@@ -144,7 +145,7 @@ std::vector<RenderState> counting(const RenderState& base, StencilCounting how, 
 }
 
 // "" when equal, else how many pixels differ and the first few: "3 pixels differ: 12,40: 1 vs 0; ..."
-std::string differingPixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int width) {
+std::string differingPixels(std::span<const uint8_t> a, std::span<const uint8_t> b, int width) {
   if (a.size() != b.size()) return "different sizes";
   size_t count = 0;
   std::ostringstream first;
@@ -156,7 +157,7 @@ std::string differingPixels(const std::vector<uint8_t>& a, const std::vector<uin
   return count == 0 ? "" : std::to_string(count) + " pixels differ: " + first.str();
 }
 
-size_t nonZeroCount(const std::vector<uint8_t>& s) {
+size_t nonZeroCount(std::span<const uint8_t> s) {
   return static_cast<size_t>(std::count_if(s.begin(), s.end(), [](uint8_t v) { return v != 0; }));
 }
 
@@ -193,9 +194,9 @@ TEST_CASE("invariant: z-fail = z-pass + (back - front fragments, depth ignored) 
     REQUIRE(frame.stencilPerLight.size() == lights.size());
     for (size_t l = 0; l < lights.size(); ++l) {
       const std::vector<ClipVolume> volumes = clipVolumes(scene, prepared, lights[l], VolumeKind::Silhouette, true);
-      const std::vector<uint8_t> zpass = countStencil(frame.framebuffer, volumes, counting(base, StencilCounting::ZPass, scene));
-      const std::vector<uint8_t> zfail = countStencil(frame.framebuffer, volumes, counting(base, StencilCounting::ZFail, scene));
-      const std::vector<uint8_t> backMinusFront = countStencil(frame.framebuffer, volumes, {backMinusFrontState(base)});
+      const PixelVector<uint8_t> zpass = countStencil(frame.framebuffer, volumes, counting(base, StencilCounting::ZPass, scene));
+      const PixelVector<uint8_t> zfail = countStencil(frame.framebuffer, volumes, counting(base, StencilCounting::ZFail, scene));
+      const PixelVector<uint8_t> backMinusFront = countStencil(frame.framebuffer, volumes, {backMinusFrontState(base)});
       std::vector<uint8_t> predicted(zpass.size());
       for (size_t i = 0; i < zpass.size(); ++i) predicted[i] = uint8_t(zpass[i] + backMinusFront[i]);
 
@@ -229,9 +230,9 @@ TEST_CASE("invariant: the silhouette volume counts exactly like the per-triangle
       for (StencilCounting how : {StencilCounting::ZPass, StencilCounting::ZFail}) {
         const bool caps = how == StencilCounting::ZFail;
         const std::vector<RenderState> states = counting(base, how, scene);
-        const std::vector<uint8_t> silhouette =
+        const PixelVector<uint8_t> silhouette =
             countStencil(frame.framebuffer, clipVolumes(scene, prepared, light, VolumeKind::Silhouette, caps), states);
-        const std::vector<uint8_t> perTriangle =
+        const PixelVector<uint8_t> perTriangle =
             countStencil(frame.framebuffer, clipVolumes(scene, prepared, light, VolumeKind::PerTriangle, caps), states);
         INFO(name(how));
         CHECK(differingPixels(silhouette, perTriangle, scene.width) == "");

@@ -6,6 +6,7 @@
 // that count — as an 8-bit wrapping value, so the comparison is modulo 256 — on every pixel the
 // oracle does not mark as near an edge, and the shadow mask (stencil == 0 means lit) must agree
 // with the oracle's shadow rays on >= 99.9 % of the pixels.
+#include <span>
 #include <catch2/catch.hpp>
 
 #include <cstdint>
@@ -72,7 +73,7 @@ struct CountCheck {
 };
 
 // Stencil against the oracle's count on every pixel not marked nearEdge.
-CountCheck compareCounts(const std::vector<uint8_t>& stencil, const OracleImage& img, const std::vector<int>& counts) {
+CountCheck compareCounts(std::span<const uint8_t> stencil, const OracleImage& img, const std::vector<int>& counts) {
   CountCheck c;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
@@ -242,8 +243,8 @@ TEST_CASE("pumpkins with z-pass: the camera inside the hollow pumpkin's volume m
   const FrameResult zfail = renderWithStencil(scene, ShadowMethod::ZFail);
   REQUIRE(zpass.stencilPerLight.size() == 1);
   const OracleImage img = castFor(scene, scene.lights[0]);
-  const std::vector<uint8_t>& p = zpass.stencilPerLight[0];
-  const std::vector<uint8_t>& f = zfail.stencilPerLight[0];
+  const auto& p = zpass.stencilPerLight[0];
+  const auto& f = zfail.stencilPerLight[0];
 
   size_t differ = 0, compared = 0, predicted = 0, wrongDifference = 0;
   for (size_t i = 0; i < p.size(); ++i) {

@@ -7,7 +7,7 @@
 namespace shadowref::testing {
 
 namespace {
-bool sameBytes(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+bool sameBytes(const PixelVector<glm::vec4>& a, const PixelVector<glm::vec4>& b) {
   if (a.size() != b.size()) return false;
   return a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0;
 }

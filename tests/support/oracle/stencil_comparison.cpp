@@ -1,11 +1,12 @@
 #include "support/oracle/stencil_comparison.h"
 
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
 namespace shadowref::oracle {
 
-StencilComparison compareStencil(const OracleImage& oracle, const std::vector<uint8_t>& stencil, CountKind kind,
+StencilComparison compareStencil(const OracleImage& oracle, std::span<const uint8_t> stencil, CountKind kind,
                                  size_t reportLimit) {
   if (stencil.size() != oracle.zpass.size()) throw std::invalid_argument("compareStencil: image sizes differ");
   StencilComparison result;

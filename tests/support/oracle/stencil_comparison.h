@@ -3,6 +3,7 @@
 // With wrapping ops (INCR_WRAP / DECR_WRAP) the 8-bit stencil holds the count modulo 256.
 #pragma once
 
+#include <span>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -22,7 +23,7 @@ struct StencilComparison {
 };
 
 // `stencil`: width * height values, row 0 at the bottom (Framebuffer::stencil()).
-StencilComparison compareStencil(const OracleImage& oracle, const std::vector<uint8_t>& stencil, CountKind kind,
+StencilComparison compareStencil(const OracleImage& oracle, std::span<const uint8_t> stencil, CountKind kind,
                                  size_t reportLimit = 10);
 
 }  // namespace shadowref::oracle
