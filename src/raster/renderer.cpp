@@ -74,7 +74,12 @@ Rect drawRegion(const RenderState& state, const Framebuffer& fb) {
 void Renderer::addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
                         const RenderState& state, AssemblyWorkspace& ws) const {
   // Set up in place (a setup is a few hundred bytes), taken back if the triangle has no pixels.
-  if (!setupTriangle(a, b, c, facing, state, fb_.depthCodec(), ws.setups.emplace_back())) ws.setups.pop_back();
+  TriangleSetup& t = ws.setups.emplace_back();
+  if (!setupTriangle(a, b, c, facing, state, fb_.depthCodec(), t)) {
+    ws.setups.pop_back();
+    return;
+  }
+  ws.bounds.push_back({t.minX, t.minY, t.maxX, t.maxY});
 }
 
 void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, const RenderState& state,
@@ -135,6 +140,7 @@ void Renderer::assembleRange(const DrawCall& call, size_t first, size_t last, co
 void Renderer::startWorkspace(AssemblyWorkspace& ws, size_t triangles) {
   ws.setups.clear();
   ws.setups.reserve(triangles);  // the last draw's block was moved out: one allocation, not a doubling series
+  ws.bounds.clear();
   ws.clippedVertices.clear();
   ws.stats = {};
 }
@@ -257,6 +263,7 @@ bool Renderer::collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDra
   pending.first = pendingSetups_.size();
   for (AssemblyWorkspace& ws : workspaces) {
     for (const TriangleSetup& t : ws.setups) pendingSetups_.push_back(&t);
+    pendingBounds_.insert(pendingBounds_.end(), ws.bounds.begin(), ws.bounds.end());
     keepBlock(ws);
   }
   return finishPending(pending);
@@ -284,8 +291,8 @@ bool Renderer::finishPending(PendingDraw& pending) {
   pending.minY = region.y + region.height;
   pending.maxY = -1;
   for (size_t i = pending.first; i < pending.first + pending.count; ++i) {
-    pending.minY = std::min(pending.minY, pendingSetups_[i]->minY);
-    pending.maxY = std::max(pending.maxY, pendingSetups_[i]->maxY);
+    pending.minY = std::min(pending.minY, pendingBounds_[i].minY);
+    pending.maxY = std::max(pending.maxY, pendingBounds_[i].maxY);
   }
   pending.minY = std::max(pending.minY, region.y);
   pending.maxY = std::min(pending.maxY, region.y + region.height - 1);
@@ -357,7 +364,10 @@ void Renderer::assembleQueued() {
     for (size_t i = queuedGroups_[g]; i < queuedGroups_[g + 1]; ++i) {
       PendingDraw& pending = pending_[queued_[i].pending];
       pending.first = pendingSetups_.size();
-      for (; next < queued_[i].setupsEnd; ++next) pendingSetups_.push_back(&ws.setups[next]);
+      for (; next < queued_[i].setupsEnd; ++next) {
+        pendingSetups_.push_back(&ws.setups[next]);
+        pendingBounds_.push_back(ws.bounds[next]);
+      }
       if (!finishPending(pending)) {
         pending.count = 0;  // nothing to rasterize: binned nowhere, no rows
         pending.minY = std::numeric_limits<int>::max();
@@ -379,10 +389,11 @@ constexpr int kMinBandRows = 16;
 // Below this many candidate pixels a draw is not worth waking the other threads for.
 constexpr int64_t kParallelThreshold = 2048;
 
-int64_t candidatePixels(const std::vector<const TriangleSetup*>& setups, size_t first, size_t count, const Rect& r) {
+template <class Bounds>
+int64_t candidatePixels(const std::vector<Bounds>& bounds, size_t first, size_t count, const Rect& r) {
   int64_t sum = 0;
   for (size_t i = first; i < first + count; ++i) {
-    const TriangleSetup& t = *setups[i];
+    const Bounds& t = bounds[i];
     const int64_t w = std::min(t.maxX, r.x + r.width - 1) - std::max(t.minX, r.x) + 1;
     const int64_t h = std::min(t.maxY, r.y + r.height - 1) - std::max(t.minY, r.y) + 1;
     if (w > 0 && h > 0) sum += w * h;
@@ -446,7 +457,7 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
   for (const PendingDraw& draw : pending_) {
     const int x0 = draw.region.x, x1 = draw.region.x + draw.region.width - 1;
     for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
-      const TriangleSetup& t = *pendingSetups_[i];
+      const SetupBounds& t = pendingBounds_[i];
       const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
       const int64_t width = std::min(t.maxX, x1) - std::max(t.minX, x0) + 1;
       if (bottom > top || width <= 0) continue;
@@ -484,6 +495,7 @@ void Renderer::flush() {
   if (!queued_.empty()) assembleQueued();
   if (pending_.empty()) {
     pendingSetups_.clear();
+    pendingBounds_.clear();
     pendingBlocks_.clear();
     pendingClipped_.clear();
     return;
@@ -493,11 +505,12 @@ void Renderer::flush() {
   for (const PendingDraw& d : pending_) {
     minY = std::min(minY, d.minY);
     maxY = std::max(maxY, d.maxY);
-    if (candidates < kParallelThreshold) candidates += candidatePixels(pendingSetups_, d.first, d.count, d.region);
+    if (candidates < kParallelThreshold) candidates += candidatePixels(pendingBounds_, d.first, d.count, d.region);
   }
   if (maxY < minY) {  // every pending draw was culled or clipped away whole
     pending_.clear();
     pendingSetups_.clear();
+    pendingBounds_.clear();
     pendingBlocks_.clear();
     pendingClipped_.clear();
     return;
@@ -517,7 +530,7 @@ void Renderer::flush() {
   for (size_t d = 0; d < pending_.size(); ++d) {
     const PendingDraw& draw = pending_[d];
     for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
-      const TriangleSetup& t = *pendingSetups_[i];
+      const SetupBounds& t = pendingBounds_[i];
       setupDraw_[i] = uint32_t(d);
       const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
       if (bottom > top) continue;
@@ -537,6 +550,7 @@ void Renderer::flush() {
   }
   pending_.clear();
   pendingSetups_.clear();
+  pendingBounds_.clear();
   pendingBlocks_.clear();
   pendingClipped_.clear();
 }
