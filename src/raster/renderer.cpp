@@ -266,7 +266,8 @@ bool Renderer::collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDra
     pendingBounds_.insert(pendingBounds_.end(), ws.bounds.begin(), ws.bounds.end());
     keepBlock(ws);
   }
-  return finishPending(pending);
+  stats_.trianglesRasterized += pendingSetups_.size() - pending.first;
+  return finishPending(pending, pendingSetups_.size() - pending.first);
 }
 
 // The workspace's setups move as a block (no copy: 27k pumpkin triangles are 8 MB a pass) — the
@@ -282,10 +283,11 @@ void Renderer::keepBlock(AssemblyWorkspace& ws) {
   }
 }
 
-// `pending`'s setups are pendingSetups_[pending.first, end): counts them and fills in its rows.
-bool Renderer::finishPending(PendingDraw& pending) {
-  pending.count = pendingSetups_.size() - pending.first;
-  stats_.trianglesRasterized += pending.count;
+// `pending`'s setups are the `count` from pendingSetups_[pending.first]: fills in its count and rows;
+// false when it has nothing to rasterize. Touches nothing but `pending`: groups of queued draws
+// finish theirs at once.
+bool Renderer::finishPending(PendingDraw& pending, size_t count) const {
+  pending.count = count;
   const Rect& region = pending.region;
   if (region.width <= 0 || region.height <= 0 || pending.count == 0) return false;
   pending.minY = region.y + region.height;
@@ -358,24 +360,32 @@ void Renderer::assembleQueued() {
     }
     ws.corners = nullptr;
   });
-  for (size_t g = 0; g < groups; ++g) {
-    AssemblyWorkspace& ws = queuedWs_[g];
+  // Each group's setups take the next slice of the pending lists, filled on the threads with its
+  // draws' rows (27k pumpkin triangles a pass: a serial copy kept the other thread waiting).
+  std::vector<size_t>& groupFirst = queuedGroupFirst_;
+  groupFirst.assign(groups + 1, pendingSetups_.size());
+  for (size_t g = 0; g < groups; ++g) groupFirst[g + 1] = groupFirst[g] + queuedWs_[g].setups.size();
+  pendingSetups_.resize(groupFirst[groups]);
+  pendingBounds_.resize(groupFirst[groups]);
+  pool_->run(int(groups), [&](int gi) {
+    const size_t g = size_t(gi);
+    const AssemblyWorkspace& ws = queuedWs_[g];
+    for (size_t k = 0; k < ws.setups.size(); ++k) pendingSetups_[groupFirst[g] + k] = &ws.setups[k];
+    std::copy(ws.bounds.begin(), ws.bounds.end(), pendingBounds_.begin() + std::ptrdiff_t(groupFirst[g]));
     size_t next = 0;
     for (size_t i = queuedGroups_[g]; i < queuedGroups_[g + 1]; ++i) {
       PendingDraw& pending = pending_[queued_[i].pending];
-      pending.first = pendingSetups_.size();
-      for (; next < queued_[i].setupsEnd; ++next) {
-        pendingSetups_.push_back(&ws.setups[next]);
-        pendingBounds_.push_back(ws.bounds[next]);
-      }
-      if (!finishPending(pending)) {
-        pending.count = 0;  // nothing to rasterize: binned nowhere, no rows
+      pending.first = groupFirst[g] + next;
+      if (!finishPending(pending, queued_[i].setupsEnd - next)) {
+        pending.count = 0;  // nothing to rasterize: no band takes it
         pending.minY = std::numeric_limits<int>::max();
         pending.maxY = -1;
       }
+      next = queued_[i].setupsEnd;
     }
-    keepBlock(ws);
-  }
+  });
+  stats_.trianglesRasterized += groupFirst[groups] - groupFirst[0];
+  for (size_t g = 0; g < groups; ++g) keepBlock(queuedWs_[g]);
   queued_.clear();
 }
 
@@ -412,25 +422,30 @@ void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, Fragment
   fragments.processTriangle(t, region);
 }
 
-// The setups of the pending draws that touch rows [y0, y1] (given in binned_, in submission
-// order), each rasterized inside those rows with its own draw's state.
-void Renderer::rasterizeBand(const std::vector<uint32_t>& setups, int y0, int y1, RasterStats& stats) const {
+// The setups of the pending draws whose rows (inside their draw's region) meet rows [y0, y1],
+// in submission order, each rasterized inside those rows with its own draw's state. The band
+// picks its setups out of the compact bounds list itself — 16 bytes a setup read on the band's
+// thread — rather than every setup being binned on one thread before the bands start.
+void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats) const {
   std::optional<FragmentProcessor> fragments;
-  uint32_t current = UINT32_MAX;
-  Rect band;
-  for (const uint32_t i : setups) {
-    const uint32_t d = setupDraw_[i];
-    if (d != current) {
-      const PendingDraw& draw = pending_[d];
-      current = d;
-      band = draw.region;
-      band.y = std::max(y0, draw.region.y);
-      band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
-      // The processor writes to fb_ through its own reference: rasterizing changes the
-      // framebuffer, not the renderer.
-      fragments.emplace(fb_, draw.state, draw.shader, stats, &draw.watch);
+  for (const PendingDraw& draw : pending_) {
+    const int first = std::max(y0, draw.minY), last = std::min(y1, draw.maxY);
+    if (first > last) continue;  // also a draw with nothing to rasterize (minY > maxY)
+    Rect band = draw.region;
+    band.y = std::max(y0, draw.region.y);
+    band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
+    bool started = false;
+    for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
+      const SetupBounds& b = pendingBounds_[i];
+      if (b.maxY < first || b.minY > last) continue;
+      if (!started) {
+        // The processor writes to fb_ through its own reference: rasterizing changes the
+        // framebuffer, not the renderer.
+        fragments.emplace(fb_, draw.state, draw.shader, stats, &draw.watch);
+        started = true;
+      }
+      rasterizeOne(*pendingSetups_[i], band, *fragments);
     }
-    if (band.height > 0) rasterizeOne(*pendingSetups_[i], band, *fragments);
   }
 }
 
@@ -443,8 +458,8 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
 }
 
 // Cuts rows [minY, maxY] into at most maxBands bands, each at least kMinBandRows rows (unless all
-// of them are fewer): fills bandFirstRow_ (band b is rows [bandFirstRow_[b], bandFirstRow_[b + 1]))
-// and bandOfRow_, returns the count. The threads take the bands in order, so the bands get
+// of them are fewer): fills bandFirstRow_ (band b is rows [bandFirstRow_[b], bandFirstRow_[b + 1])),
+// returns the count. The threads take the bands in order, so the bands get
 // shrinking shares of the estimated work — maxBands + 1, maxBands, … 2 parts — and the last ones,
 // small, even out the threads' ends. A row's work is estimated as its pixels in the pending
 // triangles' bounding boxes, plus a row's and a triangle's fixed costs in pixels: the city's
@@ -473,13 +488,11 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
   }
   const int64_t parts = int64_t(maxBands) * (maxBands + 3) / 2;  // (maxBands + 1) + … + 2
   bandFirstRow_.assign(1, minY);
-  bandOfRow_.resize(rows);
   int64_t done = 0, partsUpTo = maxBands + 1;  // the parts of bands 0 … the current one
   size_t start = 0;
   for (size_t r = 0; r < rows; ++r) {
     done += rowWork_[r] + rowStart_[r] + 1;
     const int band = int(bandFirstRow_.size()) - 1;
-    bandOfRow_[r] = band;
     const bool full = done * parts >= total * partsUpTo;  // this band has its share
     if (full && r + 1 - start >= size_t(kMinBandRows) && rows - (r + 1) >= size_t(kMinBandRows) && band + 1 < maxBands) {
       bandFirstRow_.push_back(minY + int(r) + 1);
@@ -520,31 +533,12 @@ void Renderer::flush() {
   const bool parallel = pool_ && maxBands >= 2 && candidates >= kParallelThreshold;
   const int bands = parallel ? splitIntoBands(minY, maxY, maxBands) : 1;
   if (!parallel) {
-    bandFirstRow_.assign({minY, maxY + 1});
-    bandOfRow_.assign(size_t(maxY - minY + 1), 0);
-  }
-  // Bin: every band gets the setups whose rows (inside their draw's region) meet it, in order.
-  if (binned_.size() < size_t(bands)) binned_.resize(size_t(bands));
-  for (int b = 0; b < bands; ++b) binned_[size_t(b)].clear();
-  setupDraw_.resize(pendingSetups_.size());
-  for (size_t d = 0; d < pending_.size(); ++d) {
-    const PendingDraw& draw = pending_[d];
-    for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
-      const SetupBounds& t = pendingBounds_[i];
-      setupDraw_[i] = uint32_t(d);
-      const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
-      if (bottom > top) continue;
-      const int first = bandOfRow_[size_t(bottom - minY)], last = bandOfRow_[size_t(top - minY)];
-      for (int b = first; b <= last; ++b) binned_[size_t(b)].push_back(uint32_t(i));
-    }
-  }
-  if (!parallel) {
-    rasterizeBand(binned_[0], minY, maxY, stats_);
+    rasterizeBand(minY, maxY, stats_);
   } else {
     // Each band of rows belongs to one task, which replays its setups in submission order.
     bandStats_.assign(size_t(bands), BandStats{});
     pool_->run(bands, [&](int b) {
-      rasterizeBand(binned_[size_t(b)], bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1, bandStats_[size_t(b)].stats);
+      rasterizeBand(bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1, bandStats_[size_t(b)].stats);
     });
     for (const BandStats& s : bandStats_) stats_ += s.stats;
   }

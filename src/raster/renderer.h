@@ -126,7 +126,7 @@ class Renderer {
   friend class DeferredDraws;
   bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
   void keepBlock(AssemblyWorkspace& ws);
-  bool finishPending(PendingDraw& pending);
+  bool finishPending(PendingDraw& pending, size_t count) const;
   // A draw whose assembly waits for the flush (DeferredDraws with Geometry::Kept): its call
   // (the state pointing at its pending draw's copy), clip planes, and its entry in pending_.
   struct QueuedAssembly {
@@ -138,7 +138,7 @@ class Renderer {
   };
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();
-  void rasterizeBand(const std::vector<uint32_t>& setups, int y0, int y1, RasterStats& stats) const;
+  void rasterizeBand(int y0, int y1, RasterStats& stats) const;
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 
   Framebuffer& fb_;
@@ -166,15 +166,13 @@ class Renderer {
   std::vector<SetupBounds> pendingBounds_;  // of each pending setup
   std::vector<std::vector<TriangleSetup>> pendingBlocks_;  // the setups, as assembly made them
   std::vector<std::deque<ClipVertex>> pendingClipped_;
-  std::vector<uint32_t> setupDraw_;               // the pending draw of each pending setup
-  std::vector<std::vector<uint32_t>> binned_;     // per band of rows: its setups, in order
   int splitIntoBands(int minY, int maxY, int maxBands);
   std::vector<int64_t> rowWork_, rowStart_;  // per row: the estimate splitIntoBands balances
   std::vector<int> bandFirstRow_;    // band b: rows [bandFirstRow_[b], bandFirstRow_[b + 1])
-  std::vector<int> bandOfRow_;       // per row from the flush's first: its band
   int deferDepth_ = 0;
   int keptDepth_ = 0;  // of those, the DeferredDraws whose makers keep every draw's geometry
   std::vector<QueuedAssembly> queued_;
+  std::vector<size_t> queuedGroupFirst_;  // group g's setups from pendingSetups_[queuedGroupFirst_[g]]
   std::vector<size_t> queuedGroups_;  // assembleQueued's groups: [queuedGroups_[g], queuedGroups_[g + 1])
   std::vector<AssemblyWorkspace> queuedWs_;
 };
