@@ -1,5 +1,9 @@
 #include "raster/depth_compare_sampler.h"
 
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -72,7 +76,11 @@ using v4l = int64_t __attribute__((vector_size(32)));
 // results are whole numbers in [0, size - 1], so the conversion to int is exact.
 v4i nearestTexels(v4d coordinate, int size) {
   v4d t = coordinate * double(size);
+#if defined(__AVX__)
+  t = _mm256_floor_pd(t);  // floor is exact: the same bits as std::floor lane by lane
+#else
   for (int lane = 0; lane < 4; ++lane) t[lane] = std::floor(t[lane]);
+#endif
   const v4d last = v4d{} + double(size - 1);
   const v4d clamped = t >= 0.0 ? (last < t ? last : t) : v4d{};
   return __builtin_convertvector(clamped, v4i);
