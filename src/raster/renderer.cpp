@@ -507,10 +507,7 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
 void Renderer::flush() {
   if (!queued_.empty()) assembleQueued();
   if (pending_.empty()) {
-    pendingSetups_.clear();
-    pendingBounds_.clear();
-    pendingBlocks_.clear();
-    pendingClipped_.clear();
+    clearPending();
     return;
   }
   int minY = fb_.height(), maxY = -1;
@@ -521,11 +518,7 @@ void Renderer::flush() {
     if (candidates < kParallelThreshold) candidates += candidatePixels(pendingBounds_, d.first, d.count, d.region);
   }
   if (maxY < minY) {  // every pending draw was culled or clipped away whole
-    pending_.clear();
-    pendingSetups_.clear();
-    pendingBounds_.clear();
-    pendingBlocks_.clear();
-    pendingClipped_.clear();
+    clearPending();
     return;
   }
   const int threads = pool_ ? pool_->threadCount() : 1;
@@ -542,6 +535,10 @@ void Renderer::flush() {
     });
     for (const BandStats& s : bandStats_) stats_ += s.stats;
   }
+  clearPending();
+}
+
+void Renderer::clearPending() {
   pending_.clear();
   pendingSetups_.clear();
   pendingBounds_.clear();

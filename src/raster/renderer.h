@@ -139,6 +139,7 @@ class Renderer {
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();
   void rasterizeBand(int y0, int y1, RasterStats& stats) const;
+  void clearPending();  // forgets every pending draw, its setups and what they point into
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 
   Framebuffer& fb_;
