@@ -81,16 +81,16 @@ class Renderer {
     std::vector<uint8_t> inside;
     const ClipVertex* base = nullptr;  // the draw's vertices; empty: work per corner
   };
-  // What one thread of triangle assembly works in: its share of the triangles' setups, the
-  // vertices clipping made (kept at stable addresses for WindowVertex::source), scratch, counters,
-  // and the corners of the draw it assembles (nullptr: work per corner).
-  // Cache lines of its own: its thread writes its vectors' ends and counters per triangle.
   // The pixels a setup may cover (its minX … maxY), in a compact list beside the setups: the
-  // flush's loops on one thread (a draw's rows, the bands, the binning) read 16 bytes a triangle
-  // instead of a line of a few-hundred-byte setup that another thread wrote.
+  // flush's loops (a draw's rows, the bands' work estimate) and each band's choice of its setups
+  // read 16 bytes a triangle instead of a line of a few-hundred-byte setup another thread wrote.
   struct SetupBounds {
     int minX, minY, maxX, maxY;
   };
+  // What one thread of triangle assembly works in: its share of the triangles' setups and their
+  // bounds, the vertices clipping made (kept at stable addresses for WindowVertex::source),
+  // scratch, counters, and the corners of the draw it assembles (nullptr: work per corner).
+  // Cache lines of its own: its thread writes its vectors' ends and counters per triangle.
   struct alignas(128) AssemblyWorkspace {
     const VertexCorners* corners = nullptr;
     VertexCorners ownCorners;  // a queued draw's (assembleQueued)
