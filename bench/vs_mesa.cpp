@@ -16,7 +16,8 @@
 // unequal work; that ratio is printed too. How close each Mesa frame is to its shadowref partner
 // (share of pixels more than 2/255 apart, mean difference) is the last table of a whole run: it is
 // what shows the pairs like for like. --agreement prints only that table, --images DIR keeps its
-// frames as PNG.
+// frames as PNG. Two threads are set against the machine's capacity for two busy threads: the
+// 1-thread frame rendered by two processes at once, in the same alternating rounds.
 //
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]
 //   vs_mesa --agreement [--images DIR]
@@ -87,6 +88,9 @@ struct Config {
   Engine engine;
   int threads;
   MesaLighting lighting = MesaLighting::FixedFunction;
+  // Two 1-thread processes at once, each rendering its own frames: what the machine gives two
+  // busy threads at that moment (capacity below), the ceiling of any 2-thread speedup.
+  bool pair = false;
   std::string name() const { return engineName() + "-" + std::to_string(threads) + "t"; }
   const char* driverName() const {
     return engine == Engine::Shadowref ? "shadowref" : engine == Engine::Llvmpipe ? "llvmpipe" : "softpipe";
@@ -94,7 +98,8 @@ struct Config {
   // The CSV's engine column: "llvmpipe-perpixel" for the per-pixel Mesa runs, "shadowref-gouraud"
   // for shadowref per vertex ("shadowref" alone is the scenes' per-pixel shading, as before).
   std::string engineName() const {
-    if (engine == Engine::Shadowref) return lighting == MesaLighting::FixedFunction ? "shadowref-gouraud" : "shadowref";
+    if (engine == Engine::Shadowref)
+      return std::string(lighting == MesaLighting::FixedFunction ? "shadowref-gouraud" : "shadowref") + (pair ? "-pair" : "");
     return std::string(driverName()) + (lighting == MesaLighting::PerPixel ? "-perpixel" : "");
   }
 };
@@ -203,7 +208,7 @@ struct RunResult {
   std::vector<double> cpuMs;    // CPU time of the whole process (all its threads)
 };
 
-RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
+std::string workerCommand(const Config& cfg, int frames, const SceneCase& c) {
   std::string cmd;
   if (cfg.engine == Engine::Llvmpipe)
     cmd = "GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=" + std::to_string(cfg.threads) + " ";
@@ -214,12 +219,25 @@ RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
   cmd += quoted(selfPath()) + " --worker " + cfg.driverName() + " " + std::to_string(cfg.threads) + " " +
          std::to_string(frames) + " " + quoted(c.file);
   for (const std::string& o : c.overrides) cmd += " " + quoted(o);
+  return cmd;
+}
+
+FILE* startWorker(const std::string& cmd) {
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) throw std::runtime_error("popen failed: " + cmd);
+  return pipe;
+}
+
+// A worker's output, once it has finished.
+std::string workerOutput(FILE* pipe, const std::string& cmd) {
   std::string out;
   char buf[4096];
   while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
   if (pclose(pipe) != 0) throw std::runtime_error("worker failed: " + cmd);
+  return out;
+}
+
+RunResult parseWorker(const std::string& out, const std::string& cmd) {
   RunResult r;
   std::istringstream lines(out);
   std::string line;
@@ -233,6 +251,26 @@ RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
     for (double v; values >> v;) into.push_back(v);
   }
   if (r.frameMs.empty()) throw std::runtime_error("worker printed no times: " + cmd);
+  return r;
+}
+
+RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
+  const std::string cmd = workerCommand(cfg, frames, c);
+  if (!cfg.pair) return parseWorker(workerOutput(startWorker(cmd), cmd), cmd);
+  // Both workers start together; each writes only when done, so reading one after the other
+  // cannot block either. The pair's time per frame is that of one engine delivering both
+  // processes' frame rates together: 1 / (1/a + 1/b), from each process's median frame. (The
+  // faster process ends first and the slower one's last frames run alone; the medians keep to the
+  // frames that ran side by side.)
+  FILE* a = startWorker(cmd);
+  FILE* b = startWorker(cmd);
+  const std::string outA = workerOutput(a, cmd), outB = workerOutput(b, cmd);
+  const RunResult ra = parseWorker(outA, cmd), rb = parseWorker(outB, cmd);
+  RunResult r;
+  r.renderer = ra.renderer + ", two processes at once";
+  const double ta = median(ra.frameMs), tb = median(rb.frameMs);
+  r.frameMs = {1.0 / (1.0 / ta + 1.0 / tb)};
+  r.cpuMs = {median(ra.cpuMs) + median(rb.cpuMs)};
   return r;
 }
 
@@ -448,14 +486,39 @@ std::string loadAverage() {
 }
 
 // The configurations of compareScenes, in the order of its columns.
-enum Column { kSr1, kSr2, kLl1, kLl2, kSoft, kLp1, kLp2, kSopp, kSrg1, kSrg2, kColumns };
+enum Column { kSr1, kSr2, kLl1, kLl2, kSoft, kLp1, kLp2, kSopp, kSrg1, kSrg2, kSrPair, kSrgPair, kColumns };
 
 std::vector<Config> comparedConfigs() {
   const MesaLighting pp = MesaLighting::PerPixel, fixed = MesaLighting::FixedFunction;
   return {{Engine::Shadowref, 1, pp}, {Engine::Shadowref, 2, pp}, {Engine::Llvmpipe, 1, fixed},
           {Engine::Llvmpipe, 2, fixed}, {Engine::Softpipe, 1, fixed}, {Engine::Llvmpipe, 1, pp},
           {Engine::Llvmpipe, 2, pp}, {Engine::Softpipe, 1, pp}, {Engine::Shadowref, 1, fixed},
-          {Engine::Shadowref, 2, fixed}};
+          {Engine::Shadowref, 2, fixed}, {Engine::Shadowref, 1, pp, true}, {Engine::Shadowref, 1, fixed, true}};
+}
+
+// Two threads against what the machine gives two threads: the 1-thread frame rendered by two
+// processes at once (Config::pair). On an idle machine with two equal cores the pair delivers
+// twice the frames of one process (capacity 2); on a shared host a core can slow down while the
+// other is busy (seen here at times: one virtual CPU 30-40 % slower whenever the other ran
+// anything, even a spin loop), and no 2-thread frame can then be faster than 1-thread time /
+// capacity. The spin-loop probe (probeMachine) does not see that; this does, per scene and round.
+void printCapacityTable(const std::vector<SceneCase>& cases, const std::vector<std::vector<Measured>>& all) {
+  std::printf("\nTwo threads against the machine's capacity for two busy threads: the 1-thread frame rendered by\n"
+              "two processes at once (pair: time per frame of the two together); capacity = 1t / pair, 2 on an\n"
+              "idle machine of two equal cores, the ceiling of 2t/1t; share = (1t / 2t) / capacity\n");
+  std::printf("%-15s %7s %7s %7s %6s %6s %6s | %7s %7s %7s %6s %6s %6s\n", "scene", "srg-1t", "srg-2t", "pair", "2t/1t",
+              "capac", "share", "sr-1t", "sr-2t", "pair", "2t/1t", "capac", "share");
+  for (size_t k = 0; k < all.size(); ++k) {
+    std::printf("%-15s", cases[k].label.c_str());
+    const auto row = [&](Column one, Column two, Column pair) {
+      const double t1 = all[k][size_t(one)].median(), t2 = all[k][size_t(two)].median(), tp = all[k][size_t(pair)].median();
+      std::printf(" %7.2f %7.2f %7.2f %6.2f %6.2f %6.2f", t1, t2, tp, t1 / t2, t1 / tp, (t1 / t2) / (t1 / tp));
+    };
+    row(kSrg1, kSrg2, kSrgPair);
+    std::printf(" |");
+    row(kSr1, kSr2, kSrPair);
+    std::printf("\n");
+  }
 }
 
 // One like-for-like pair of a table: shadowref's 1- and 2-thread columns, Mesa's llvmpipe 1 and 2
@@ -523,6 +586,7 @@ void compareScenes(const Settings& s, std::ofstream& csv) {
                             {"vsLl1", "vsLl2", "vsSoft"}};
   for (const PairColumns* p : {&perVertex, &perPixel, &unequal}) printPairTable(*p, cases, all, false);
   std::printf("Mesa: %s; %s\n", all.front()[kLl1].renderer.c_str(), all.front()[kSoft].renderer.c_str());
+  printCapacityTable(cases, all);
   // On a shared machine the wall clock carries other processes' load; the process CPU time of the
   // single-threaded runs does not (much), so it is the steadier comparison of work per frame (the
   // 2-thread columns' CPU time includes the workers' waiting).
