@@ -2,6 +2,11 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <new>
+#include <utility>
+#include <vector>
+
 #include <glm/glm.hpp>
 
 namespace shadowref {
@@ -14,5 +19,31 @@ struct ClipVertex {
   glm::dvec4 position{0.0};  // clip space; w = 0 (a point at infinity) is legal
   std::array<double, kMaxVaryings> varyings{};
 };
+
+// An allocator whose resize() leaves the new elements unconstructed, for buffers that threads
+// fill in ranges: std::vector would first zero every 160-byte vertex, one after the other, on the
+// calling thread. Whoever fills an element constructs it (placeVertex) before anything reads it.
+template <class T>
+struct ConstructLaterAllocator : std::allocator<T> {
+  using std::allocator<T>::allocator;
+  template <class U>
+  struct rebind {
+    using other = ConstructLaterAllocator<U>;
+  };
+  template <class U>
+  void construct(U*) noexcept {}
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// Vertices filled after allocation, range by range (prepareInstances, the Gouraud passes' lit copies).
+using ClipVertexBuffer = std::vector<ClipVertex, ConstructLaterAllocator<ClipVertex>>;
+
+// Constructs the vertex at `slot` of a ClipVertexBuffer as a copy of `v`.
+inline ClipVertex& placeVertex(ClipVertex& slot, const ClipVertex& v) {
+  return *::new (static_cast<void*>(&slot)) ClipVertex(v);
+}
 
 }  // namespace shadowref

@@ -16,13 +16,14 @@ const RenderState& stateFor(const RenderState& state, const Instance& instance, 
 
 namespace {
 
-// Vertices [first, last) of a prepared instance: clip position, world position and normal.
+// Vertices [first, last) of a prepared instance: clip position, world position and normal (the
+// other varyings zero), each constructed in place.
 void prepareVertices(PreparedInstance& p, const glm::dmat3& normalMatrix, size_t first, size_t last) {
   const Instance& inst = *p.instance;
   const Mesh& mesh = *inst.mesh;
   for (size_t v = first; v < last; ++v) {
     const glm::dvec4 object(mesh.positions[v], 1.0);
-    ClipVertex& cv = p.vertices[v];
+    ClipVertex cv;
     cv.position = p.transform.toClip(object);
     const glm::dvec3 world = glm::dvec3(inst.world * object);
     const glm::dvec3 normal = glm::normalize(normalMatrix * mesh.normals[v]);
@@ -30,22 +31,40 @@ void prepareVertices(PreparedInstance& p, const glm::dmat3& normalMatrix, size_t
       cv.varyings[kVaryingPosition + k] = world[k];
       cv.varyings[kVaryingNormal + k] = normal[k];
     }
+    placeVertex(p.vertices[v], cv);
   }
 }
 
-// Vertices are prepared in ranges of this many, the ranges of all instances shared by the threads.
-constexpr size_t kVertexRange = 2048;
+// Vertices are worked on in ranges of this many, the ranges of all items shared by the threads.
+constexpr size_t kVertexRange = 1024;
 
 }  // namespace
+
+void forEachVertexRange(Renderer* renderer, std::span<const size_t> counts,
+                        const std::function<void(size_t item, size_t first, size_t last)>& fn) {
+  struct Range {
+    size_t item, first, last;
+  };
+  std::vector<Range> ranges;
+  for (size_t i = 0; i < counts.size(); ++i)
+    for (size_t first = 0; first < counts[i]; first += kVertexRange)
+      ranges.push_back({i, first, std::min(counts[i], first + kVertexRange)});
+  auto run = [&](int r) {
+    const Range& range = ranges[size_t(r)];
+    fn(range.item, range.first, range.last);
+  };
+  if (renderer) {
+    renderer->parallelFor(int(ranges.size()), run);
+  } else {
+    for (size_t r = 0; r < ranges.size(); ++r) run(int(r));
+  }
+}
 
 std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
                                                Renderer* renderer) {
   std::vector<PreparedInstance> out(instances.size());
   std::vector<glm::dmat3> normalMatrices(instances.size());
-  struct Range {
-    size_t instance, first, last;
-  };
-  std::vector<Range> ranges;
+  std::vector<size_t> counts(instances.size());
   for (size_t i = 0; i < instances.size(); ++i) {
     const Instance& inst = instances[i];
     PreparedInstance& p = out[i];
@@ -54,21 +73,13 @@ std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& inst
     p.transform.modelView = view.view * inst.world;
     p.transform.projection = view.projection;
     normalMatrices[i] = glm::transpose(glm::inverse(glm::dmat3(inst.world)));
-    const Mesh& mesh = *inst.mesh;
-    p.vertices.resize(mesh.positions.size());
-    for (size_t first = 0; first < mesh.positions.size(); first += kVertexRange)
-      ranges.push_back({i, first, std::min(mesh.positions.size(), first + kVertexRange)});
-    copyTriangleIndices(mesh, p.indices);
+    counts[i] = inst.mesh->positions.size();
+    p.vertices.resize(counts[i]);  // constructed by prepareVertices
+    copyTriangleIndices(*inst.mesh, p.indices);
   }
-  auto prepare = [&](int r) {
-    const Range& range = ranges[size_t(r)];
-    prepareVertices(out[range.instance], normalMatrices[range.instance], range.first, range.last);
-  };
-  if (renderer) {
-    renderer->parallelFor(int(ranges.size()), prepare);
-  } else {
-    for (size_t r = 0; r < ranges.size(); ++r) prepare(int(r));
-  }
+  forEachVertexRange(renderer, counts, [&](size_t i, size_t first, size_t last) {
+    prepareVertices(out[i], normalMatrices[i], first, last);
+  });
   return out;
 }
 
@@ -117,11 +128,33 @@ namespace {
 // What a pass's deferred draws need alive until they are rasterized (DeferredDraws).
 struct PassResources {
   std::vector<std::unique_ptr<FragmentShader>> shaders;
-  std::deque<std::vector<ClipVertex>> vertices;  // Gouraud: the lit copies of the vertices
+  std::deque<ClipVertexBuffer> vertices;  // Gouraud: the lit copies of the vertices
 };
 
-void drawInstance(Renderer& renderer, const RenderState& state, const PreparedInstance& p, const LightingSetup& lighting,
-                  const Material& material, DrawKind kind, PassResources& keep) {
+// An instance of a pass: how it is lit, and for a Gouraud material with lights its lit vertices.
+struct LitInstance {
+  const PreparedInstance* prepared = nullptr;
+  const Material* material = nullptr;
+  LightingSetup lighting;
+  ClipVertexBuffer* litVertices = nullptr;
+};
+
+// The vertices of `p` with each one's Gouraud colour in the colour varyings (gouraudVertexColor).
+void lightVertices(const PreparedInstance& p, const LightingSetup& lighting, ClipVertexBuffer& lit, size_t first,
+                   size_t last) {
+  for (size_t i = first; i < last; ++i) {
+    ClipVertex& v = placeVertex(lit[i], p.vertices[i]);
+    const glm::dvec3 pos(v.varyings[kVaryingPosition], v.varyings[kVaryingPosition + 1], v.varyings[kVaryingPosition + 2]);
+    const glm::dvec3 n(v.varyings[kVaryingNormal], v.varyings[kVaryingNormal + 1], v.varyings[kVaryingNormal + 2]);
+    const glm::dvec3 c = gouraudVertexColor(lighting, pos, n);
+    for (int k = 0; k < 3; ++k) v.varyings[kVaryingColor + k] = c[k];
+  }
+}
+
+void drawInstance(Renderer& renderer, const RenderState& state, const LitInstance& item, DrawKind kind,
+                  PassResources& keep) {
+  const PreparedInstance& p = *item.prepared;
+  const LightingSetup& lighting = item.lighting;
   RenderState mirrored;
   DrawCall call;
   call.state = &stateFor(state, *p.instance, mirrored);
@@ -134,20 +167,13 @@ void drawInstance(Renderer& renderer, const RenderState& state, const PreparedIn
     keep.shaders.push_back(std::make_unique<ConstantColorShader>(
         glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0)));
     call.vertices = p.vertices;
-  } else if (material.shading == ShadingModel::PerPixel) {
+  } else if (!item.litVertices) {
     keep.shaders.push_back(std::make_unique<PerPixelLightingShader>(lighting));
     call.vertices = p.vertices;
   } else {
-    // Gouraud: light each vertex, interpolate the colour.
-    std::vector<ClipVertex>& lit = keep.vertices.emplace_back(p.vertices);
-    for (ClipVertex& v : lit) {
-      const glm::dvec3 pos(v.varyings[kVaryingPosition], v.varyings[kVaryingPosition + 1], v.varyings[kVaryingPosition + 2]);
-      const glm::dvec3 n(v.varyings[kVaryingNormal], v.varyings[kVaryingNormal + 1], v.varyings[kVaryingNormal + 2]);
-      const glm::dvec3 c = gouraudVertexColor(lighting, pos, n);
-      for (int k = 0; k < 3; ++k) v.varyings[kVaryingColor + k] = c[k];
-    }
+    // Gouraud: each vertex lit (drawLit, on the threads), the colour interpolated.
     keep.shaders.push_back(std::make_unique<GouraudShader>());
-    call.vertices = lit;
+    call.vertices = *item.litVertices;
   }
   call.shader = keep.shaders.back().get();
   renderer.draw(call);
@@ -159,20 +185,34 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
              std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
              DrawKind kind) {
   PassResources keep;  // declared first: outlives the deferred draws, which end first
-  // The prepared vertices and indices, and the lit copies in `keep`, stay put.
-  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
+  std::vector<LitInstance> items;
   for (const PreparedInstance& p : prepared) {
-    const Material& material = scene.materials.at(size_t(p.instance->material));
-    LightingSetup lighting;
-    lighting.material = toPhongMaterial(material);
+    LitInstance item;
+    item.prepared = &p;
+    item.material = &scene.materials.at(size_t(p.instance->material));
+    LightingSetup& lighting = item.lighting;
+    lighting.material = toPhongMaterial(*item.material);
     lighting.globalAmbient = scene.ambient;
     lighting.includeAmbient = includeAmbient;
     lighting.eye = view.eye;
     for (const Light& light : lights)
       if (withinRange(light, p.instance->worldBounds)) lighting.lights.push_back(toPhongLight(light));
     if (!includeAmbient && lighting.lights.empty()) continue;
-    drawInstance(renderer, state, p, lighting, material, kind, keep);
+    if (!lighting.lights.empty() && item.material->shading == ShadingModel::Gouraud) {
+      item.litVertices = &keep.vertices.emplace_back();
+      item.litVertices->resize(p.vertices.size());  // constructed by lightVertices
+    }
+    items.push_back(std::move(item));
   }
+  // The Gouraud instances' vertices lit on all threads, before any draw.
+  std::vector<size_t> counts(items.size());
+  for (size_t i = 0; i < items.size(); ++i) counts[i] = items[i].litVertices ? items[i].litVertices->size() : 0;
+  forEachVertexRange(&renderer, counts, [&](size_t i, size_t first, size_t last) {
+    lightVertices(*items[i].prepared, items[i].lighting, *items[i].litVertices, first, last);
+  });
+  // The prepared vertices and indices, and the lit copies in `keep`, stay put.
+  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
+  for (const LitInstance& item : items) drawInstance(renderer, state, item, kind, keep);
 }
 
 void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,

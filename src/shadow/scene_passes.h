@@ -2,6 +2,8 @@
 // method's passes are made of (ambient pass, lit pass, depth-only pass).
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -21,7 +23,7 @@ struct PreparedInstance {
   const Instance* instance = nullptr;
   int index = 0;                 // position in the scene's instance list (pixel-history tag)
   VertexTransform transform;     // object -> clip; shadow volumes of this instance must use it too
-  std::vector<ClipVertex> vertices;
+  ClipVertexBuffer vertices;
   std::vector<uint32_t> indices;
 };
 
@@ -34,6 +36,12 @@ const RenderState& stateFor(const RenderState& state, const Instance& instance, 
 // (in ranges of vertices: the same bits, each vertex by itself).
 std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
                                                Renderer* renderer = nullptr);
+
+// fn(item, first, last) for the vertices [first, last) of every item, items having counts[item]
+// vertices, in ranges of a few thousand: on the renderer's threads when one is given. Each vertex
+// is worked on by itself, so the bits do not depend on the ranges.
+void forEachVertexRange(Renderer* renderer, std::span<const size_t> counts,
+                        const std::function<void(size_t item, size_t first, size_t last)>& fn);
 
 PhongLight toPhongLight(const Light& light);
 PhongMaterial toPhongMaterial(const Material& material);

@@ -119,20 +119,20 @@ class ShadowMappedGouraudShader final : public FragmentShader {
 // The vertices of a Gouraud material for ShadowMappedGouraudShader: the position stays, the
 // normal's varyings and those after it take each light's share of the ambient plus the light
 // (shadePoint's terms, in its order: ambient first).
-std::vector<ClipVertex> gouraudCameraVertices(const PreparedInstance& p, const LightingSetup& lighting, double share) {
+void gouraudCameraVertices(const PreparedInstance& p, const LightingSetup& lighting, double share, ClipVertexBuffer& lit,
+                           size_t first, size_t last) {
   const glm::dvec3 ambient = ambientTerm(lighting.material, lighting.globalAmbient) * share;
-  std::vector<ClipVertex> lit = p.vertices;
-  for (ClipVertex& v : lit) {
+  for (size_t k = first; k < last; ++k) {
+    ClipVertex& v = placeVertex(lit[k], p.vertices[k]);
     const glm::dvec3 pos(v.varyings[kVaryingPosition], v.varyings[kVaryingPosition + 1], v.varyings[kVaryingPosition + 2]);
     const glm::dvec3 n(v.varyings[kVaryingNormal], v.varyings[kVaryingNormal + 1], v.varyings[kVaryingNormal + 2]);
     for (size_t i = 0; i < lighting.lights.size(); ++i) {
       const PhongLight& light = lighting.lights[i];
       glm::dvec3 c = ambient;
       if (light.position != glm::dvec4(0.0)) c += lightContribution(light, lighting.material, pos, n, lighting.eye);
-      for (int k = 0; k < 3; ++k) v.varyings[size_t(ShadowMappedGouraudShader::kFirstColor) + 3 * i + size_t(k)] = c[k];
+      for (int j = 0; j < 3; ++j) v.varyings[size_t(ShadowMappedGouraudShader::kFirstColor) + 3 * i + size_t(j)] = c[j];
     }
   }
-  return lit;
 }
 
 // Step 2 for one set of lights (one accumulation frame). Returns false when a Gouraud material had
@@ -159,10 +159,15 @@ bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& s
     gouraudKept = gouraudKept && (!wants || fitGouraud);
   }
   // The Gouraud materials' vertices lit on all threads; they outlive the deferred draws.
-  std::vector<std::vector<ClipVertex>> litVertices(prepared.size());
-  renderer.parallelFor(int(prepared.size()), [&](int i) {
-    if (gouraud[size_t(i)])
-      litVertices[size_t(i)] = gouraudCameraVertices(prepared[size_t(i)], lighting[size_t(i)], 1.0 / double(active.size()));
+  std::vector<ClipVertexBuffer> litVertices(prepared.size());
+  std::vector<size_t> counts(prepared.size());
+  for (size_t i = 0; i < prepared.size(); ++i) {
+    if (!gouraud[i]) continue;
+    counts[i] = prepared[i].vertices.size();
+    litVertices[i].resize(counts[i]);  // constructed by gouraudCameraVertices
+  }
+  forEachVertexRange(&renderer, counts, [&](size_t i, size_t first, size_t last) {
+    gouraudCameraVertices(prepared[i], lighting[i], 1.0 / double(active.size()), litVertices[i], first, last);
   });
   std::vector<std::unique_ptr<FragmentShader>> keep;  // outlives the deferred draws too
   const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // the prepared geometry stays put
