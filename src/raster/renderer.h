@@ -94,7 +94,7 @@ class Renderer {
   struct alignas(128) AssemblyWorkspace {
     const VertexCorners* corners = nullptr;
     VertexCorners ownCorners;  // a queued draw's (assembleQueued)
-    std::vector<TriangleSetup> setups;
+    SetupBlock setups;
     std::vector<SetupBounds> bounds;  // of each setup
     std::deque<ClipVertex> clippedVertices;
     std::vector<ClipVertex> polygon, clipScratch, clipOut;
@@ -165,7 +165,7 @@ class Renderer {
   std::vector<PendingDraw> pending_;
   std::vector<const TriangleSetup*> pendingSetups_;
   std::vector<SetupBounds> pendingBounds_;  // of each pending setup
-  std::vector<std::vector<TriangleSetup>> pendingBlocks_;  // the setups, as assembly made them
+  std::vector<SetupBlock> pendingBlocks_;  // the setups, as assembly made them
   std::vector<std::deque<ClipVertex>> pendingClipped_;
   int splitIntoBands(int minY, int maxY, int maxBands);
   std::vector<int64_t> rowWork_, rowStart_;  // per row: the estimate splitIntoBands balances

@@ -58,6 +58,10 @@ struct TriangleSetup {
   int64_t edgeAt(int i, int px, int py) const;
 };
 
+// The setups of a block of triangles, set up in place: emplace_back() leaves the setup
+// unconstructed (no zero-fill of a few hundred bytes that setupTriangle writes again).
+using SetupBlock = std::vector<TriangleSetup, ConstructLaterAllocator<TriangleSetup>>;
+
 // Builds the setup of a window-space triangle with the given facing. Returns false when the
 // snapped triangle has no area. Vertex order is made counter-clockwise here.
 bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
