@@ -20,9 +20,11 @@ struct ClipVertex {
   std::array<double, kMaxVaryings> varyings{};
 };
 
-// An allocator whose resize() leaves the new elements unconstructed, for buffers that threads
-// fill in ranges: std::vector would first zero every 160-byte vertex, one after the other, on the
-// calling thread. Whoever fills an element constructs it (placeVertex) before anything reads it.
+// An allocator whose resize() and emplace_back() leave the new elements unconstructed, for
+// aggregates that are written whole right after (vertices filled in ranges by the threads, triangle
+// setups): std::vector would first zero every element, a 160-byte vertex or 296-byte setup, the
+// vertices all on the calling thread. The storage's objects of such (implicit-lifetime) types exist
+// from allocation; whoever fills an element writes all of it before anything reads it.
 template <class T>
 struct ConstructLaterAllocator : std::allocator<T> {
   using std::allocator<T>::allocator;
