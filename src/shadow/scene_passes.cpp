@@ -134,7 +134,6 @@ struct PassResources {
 // An instance of a pass: how it is lit, and for a Gouraud material with lights its lit vertices.
 struct LitInstance {
   const PreparedInstance* prepared = nullptr;
-  const Material* material = nullptr;
   LightingSetup lighting;
   ClipVertexBuffer* litVertices = nullptr;
 };
@@ -189,16 +188,16 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
   for (const PreparedInstance& p : prepared) {
     LitInstance item;
     item.prepared = &p;
-    item.material = &scene.materials.at(size_t(p.instance->material));
+    const Material& material = scene.materials.at(size_t(p.instance->material));
     LightingSetup& lighting = item.lighting;
-    lighting.material = toPhongMaterial(*item.material);
+    lighting.material = toPhongMaterial(material);
     lighting.globalAmbient = scene.ambient;
     lighting.includeAmbient = includeAmbient;
     lighting.eye = view.eye;
     for (const Light& light : lights)
       if (withinRange(light, p.instance->worldBounds)) lighting.lights.push_back(toPhongLight(light));
     if (!includeAmbient && lighting.lights.empty()) continue;
-    if (!lighting.lights.empty() && item.material->shading == ShadingModel::Gouraud) {
+    if (!lighting.lights.empty() && material.shading == ShadingModel::Gouraud) {
       item.litVertices = &keep.vertices.emplace_back();
       item.litVertices->resize(p.vertices.size());  // constructed by lightVertices
     }
