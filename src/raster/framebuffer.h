@@ -15,6 +15,8 @@
 
 #include <glm/glm.hpp>
 
+#include "raster/construct_later.h"
+
 namespace shadowref {
 
 enum class DepthFormat : uint8_t {
@@ -44,31 +46,9 @@ struct DepthCodec {
   double resolvableDifference(double zMax) const;
 };
 
-// std::allocator, except that resize(n) without a value leaves the new elements of a trivial type
-// unwritten (default-initialized) instead of zeroing them: a clear of a whole new buffer then
-// writes each byte once, on all the renderer's threads, rather than after a zeroing on one. Whoever
-// resizes without a value writes every element before anything reads it; everything else (assign,
-// resize with a value, copies) works as with std::allocator.
-template <class T>
-struct UninitializedAllocator : std::allocator<T> {
-  using std::allocator<T>::allocator;
-  template <class U>
-  struct rebind {
-    using other = UninitializedAllocator<U>;
-  };
-  template <class U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-
 // A buffer's pixels.
 template <class T>
-using PixelVector = std::vector<T, UninitializedAllocator<T>>;
+using PixelVector = std::vector<T, ConstructLaterAllocator<T>>;
 
 class Framebuffer {
  public:

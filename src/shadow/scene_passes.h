@@ -38,7 +38,7 @@ std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& inst
                                                Renderer* renderer = nullptr);
 
 // fn(item, first, last) for the vertices [first, last) of every item, items having counts[item]
-// vertices, in ranges of a few thousand: on the renderer's threads when one is given. Each vertex
+// vertices, in ranges of about a thousand: on the renderer's threads when one is given. Each vertex
 // is worked on by itself, so the bits do not depend on the ranges.
 void forEachVertexRange(Renderer* renderer, std::span<const size_t> counts,
                         const std::function<void(size_t item, size_t first, size_t last)>& fn);

@@ -116,9 +116,9 @@ class ShadowMappedGouraudShader final : public FragmentShader {
   std::vector<const LightShadow*> shadows_;
 };
 
-// The vertices of a Gouraud material for ShadowMappedGouraudShader: the position stays, the
-// normal's varyings and those after it take each light's share of the ambient plus the light
-// (shadePoint's terms, in its order: ambient first).
+// Vertices [first, last) of a Gouraud material for ShadowMappedGouraudShader, made in `lit`: the
+// position stays, the normal's varyings and those after it take each light's share of the ambient
+// plus the light (shadePoint's terms, in its order: ambient first).
 void gouraudCameraVertices(const PreparedInstance& p, const LightingSetup& lighting, double share, ClipVertexBuffer& lit,
                            size_t first, size_t last) {
   const glm::dvec3 ambient = ambientTerm(lighting.material, lighting.globalAmbient) * share;
