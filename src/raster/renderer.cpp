@@ -150,8 +150,7 @@ void Renderer::appendTriangles(const DrawCall& call, size_t first, size_t last, 
   for (size_t i = first; i < last; ++i) {
     const ClipVertex* v[3];
     for (int k = 0; k < 3; ++k) {
-      const size_t index = call.indices.empty() ? 3 * i + k : call.indices[3 * i + k];
-      if (index >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
+      const size_t index = call.indices.empty() ? 3 * i + k : call.indices[3 * i + k];  // checked by draw()
       v[k] = &call.vertices[index];
     }
     assembleTriangle(v[0], v[1], v[2], *call.state, planes, varyingCount, ws);
@@ -189,7 +188,7 @@ void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes, Ve
   uint8_t* const inside = corners.inside.data();
   std::fill_n(inside, count, uint8_t(2));  // 2: unused
   for (const uint32_t i : call.indices)
-    if (i < count) inside[i] = 0;  // an index out of range throws in assembleRange
+    inside[i] = 0;  // every index is in range (draw() checked them)
   auto range = [&](size_t first, size_t last) {
     for (size_t i = first; i < last; ++i) {
       if (inside[i] == 2) continue;
@@ -208,6 +207,17 @@ void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes, Ve
   }
   corners.base = call.vertices.data();
 }
+
+namespace {
+// Every index of a draw within its vertices, or std::out_of_range before anything of it is
+// assembled, queued or drawn. The largest index, in a loop without an exit: it vectorises (the
+// pumpkins' passes draw a quarter of a million indices each, on the calling thread).
+void checkIndices(const DrawCall& call) {
+  uint32_t largest = 0;
+  for (const uint32_t index : call.indices) largest = std::max(largest, index);
+  if (!call.indices.empty() && largest >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
+}
+}  // namespace
 
 void Renderer::draw(const DrawCall& call) {
   const RenderState& state = *call.state;
@@ -228,6 +238,7 @@ void Renderer::draw(const DrawCall& call) {
 
   const size_t triangleCount = trianglesOf(call);
   stats_.trianglesIn += triangleCount;
+  checkIndices(call);
   if (pool_ && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1) {
     queueAssembly(call, planes, varyingCount);
     return;
@@ -239,7 +250,6 @@ void Renderer::draw(const DrawCall& call) {
   if (chunks == 1) {
     assembleRange(call, 0, triangleCount, planes, varyingCount, assembly_[0]);
   } else {
-    // An index out of range throws; the pool rethrows it here once every chunk has finished.
     pool_->run(int(chunks), [&](int c) {
       const size_t first = size_t(c) * kAssemblyChunk;
       assembleRange(call, first, std::min(triangleCount, first + kAssemblyChunk), planes, varyingCount,
@@ -305,11 +315,6 @@ bool Renderer::finishPending(PendingDraw& pending, size_t count) const {
 // every queued draw is assembled at once on all threads (assembleQueued), and its pending draw
 // keeps its place in pending_ meanwhile.
 void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount) {
-  // Thrown here, not from the flush. The largest index, in a loop without an exit: it vectorises
-  // (the pumpkins' passes queue a quarter of a million indices each, checked on the calling thread).
-  uint32_t largest = 0;
-  for (const uint32_t index : call.indices) largest = std::max(largest, index);
-  if (!call.indices.empty() && largest >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
   QueuedAssembly& q = queued_.emplace_back();
   q.call = call;
   q.planes = planes;
