@@ -198,6 +198,8 @@ using v4b = uint8_t __attribute__((vector_size(4)));
 using v8f = float __attribute__((vector_size(32)));
 using v8u = uint32_t __attribute__((vector_size(32)));
 using v8b = uint8_t __attribute__((vector_size(8)));
+using v4i = int32_t __attribute__((vector_size(16)));
+using v8i = int32_t __attribute__((vector_size(32)));
 
 // The low byte of each lane (one byte shuffle; a converting cast is lowered lane by lane).
 inline v4b lowBytes(v4u x) {
@@ -254,7 +256,18 @@ struct RowDepth {
   // lowered lane by lane by GCC 12 for AVX2).
   v8u codes8(v4d cx) const {
     const v4u a = codes4(cx), b = codes4(cx + 4.0);
+#if defined(__AVX__)
+    // One insert; the generic shuffle below adds a register move per half.
+    __m128i low, high;
+    std::memcpy(&low, &a, sizeof low);
+    std::memcpy(&high, &b, sizeof high);
+    const __m256i both = _mm256_setr_m128i(low, high);
+    v8u out;
+    std::memcpy(&out, &both, sizeof out);
+    return out;
+#else
     return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
+#endif
   }
   uint32_t code(int x) const {
     double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
@@ -313,54 +326,100 @@ void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& regi
 
 namespace {
 
+// The depth test of a vector of codes as a lane mask (all ones where it passes). Depth codes are
+// below 2^31 (DepthCodec::encode: a float32 code of [0, 1] is at most 0x3f800000, a Unorm24 code
+// below 2^24), so signed lanes order them as unsigned lanes do; x86 vectors compare signed lanes
+// only, and an unsigned compare costs a sign flip on each side.
+template <CompareFunc F, class Codes>
+inline Codes codesPass(Codes incoming, Codes stored) {
+  using Signed = std::conditional_t<sizeof(Codes) == sizeof(v8u), v8i, v4i>;
+  return (Codes)passes<F>((Signed)incoming, (Signed)stored);
+}
+
+// pass ? a : b lane by lane, for a lane mask: one blend (the generic select first tests each lane
+// against zero, not knowing the lanes are all ones or all zeros).
+template <class Codes>
+inline Codes selectLanes(Codes pass, Codes a, Codes b) {
+#if defined(__AVX2__)
+  if constexpr (sizeof(Codes) == sizeof(__m256i)) {
+    __m256i m, x, y;
+    std::memcpy(&m, &pass, sizeof m);
+    std::memcpy(&x, &a, sizeof x);
+    std::memcpy(&y, &b, sizeof y);
+    const __m256i r = _mm256_blendv_epi8(y, x, m);
+    Codes out;
+    std::memcpy(&out, &r, sizeof out);
+    return out;
+  }
+#endif
+#if defined(__SSE4_1__)
+  if constexpr (sizeof(Codes) == sizeof(__m128i)) {
+    __m128i m, x, y;
+    std::memcpy(&m, &pass, sizeof m);
+    std::memcpy(&x, &a, sizeof x);
+    std::memcpy(&y, &b, sizeof y);
+    const __m128i r = _mm_blendv_epi8(y, x, m);
+    Codes out;
+    std::memcpy(&out, &r, sizeof out);
+    return out;
+  }
+#endif
+  return (a & pass) | (b & ~pass);
+}
+
 // The rows of a triangle, depth tested eight pixels per step, then four, then one by one:
 // block(at, codes, stored, pass) for each eight or four pixels from buffer index `at` (vectors of
-// codes: v8u or v4u), single(at, code, pass) for the last one to three of a row. Counts the
-// fragments and the failed depth tests. F = Always (no depth test) reads no depth.
+// codes: v8u or v4u; pass a lane mask), single(at, code, pass) for the last one to three of a row.
+// Counts the fragments and the failed depth tests. F = Always (no depth test) reads no depth.
 template <CompareFunc F, bool kPlainFloat, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
-                   uint64_t& fragments, uint64_t& failed, Block&& block, Single&& single) {
+                   uint64_t& fragments, uint64_t& failed, const Block& block, const Single& single) {
   const uint32_t* const depth = fb.depthCodes().data();
   const int width = fb.width();
-  uint64_t rowsFragments = 0, rowsFailed = 0;  // locals: the loops keep them in registers
-  v8u fails8{};  // failed tests per lane, summed once per triangle rather than per row
-  v4u fails4{};
+  uint64_t rowsFragments = 0, rowsPassed = 0;  // locals: the loops keep them in registers
+  v8u passed8{};  // passed tests per lane, summed once per triangle rather than per row
+  v4u passed4{};
   rasterizeRowSpans(t, region, [&, depth, width](int y, int xl, int xr) {
     const size_t at = size_t(y) * size_t(width) + size_t(xl);
     const int n = xr - xl + 1;
     const RowDepth<kPlainFloat> row(t, y, fb.depthCodec(), clamp, lo, hi);
-    auto step = [&](auto codes, v4d cx, int i, auto& fails) {
+    // Copies for the row: stores through the buffers may alias anything in memory, so values
+    // read through the closures would be read again after every store.
+    const uint32_t* const stored = depth + at;
+    const Block rowBlock = block;
+    const Single rowSingle = single;
+    auto step = [&](auto codes, v4d cx, int i, auto& passed) {
       using Codes = decltype(codes);
-      Codes stored{};
-      if constexpr (F != CompareFunc::Always) std::memcpy(&stored, depth + at + size_t(i), sizeof stored);
+      Codes before{};
+      if constexpr (F != CompareFunc::Always) std::memcpy(&before, stored + i, sizeof before);
       if constexpr (sizeof(Codes) == sizeof(v8u)) codes = row.codes8(cx);
       else codes = row.codes4(cx);
-      const Codes pass = passes<F>(codes, stored);
-      fails += ~pass & 1u;
-      block(at + size_t(i), codes, stored, pass);
+      const Codes pass = codesPass<F>(codes, before);
+      passed -= pass;  // a passing lane is all ones: minus one
+      rowBlock(at + size_t(i), codes, before, pass);
     };
     int i = 0;
     v4d cx = double(xl) + v4d{0.5, 1.5, 2.5, 3.5};  // exact: whole numbers + 0.5
-    v8u rowFails8{};  // in a register through the row; the triangle's sum is in memory
-    for (; i + 8 <= n; i += 8, cx += 8.0) step(v8u{}, cx, i, rowFails8);
-    fails8 += rowFails8;
+    v8u rowPassed8{};  // in a register through the row; the triangle's sum is in memory
+    for (; i + 8 <= n; i += 8, cx += 8.0) step(v8u{}, cx, i, rowPassed8);
+    passed8 += rowPassed8;
     if (i + 4 <= n) {
-      step(v4u{}, cx, i, fails4);
+      step(v4u{}, cx, i, passed4);
       i += 4;
     }
-    uint64_t rowFails = 0;
+    uint64_t rowPassed = 0;
     for (; i < n; ++i) {
       const uint32_t code = row.code(xl + i);
-      const bool pass = passes<F>(code, F == CompareFunc::Always ? code : depth[at + size_t(i)]);
-      rowFails += !pass;
-      single(at + size_t(i), code, pass);
+      const bool pass = passes<F>(code, F == CompareFunc::Always ? code : stored[i]);
+      rowPassed += pass;
+      rowSingle(at + size_t(i), code, pass);
     }
     rowsFragments += uint64_t(n);
-    rowsFailed += rowFails;
+    rowsPassed += rowPassed;
   });
-  for (int lane = 0; lane < 4; ++lane) rowsFailed += uint64_t(fails4[lane]) + fails8[lane] + fails8[lane + 4];
+  for (int lane = 0; lane < 4; ++lane) rowsPassed += uint64_t(passed4[lane]) + passed8[lane] + passed8[lane + 4];
   fragments += rowsFragments;
-  failed += rowsFailed;
+  failed += rowsFragments - rowsPassed;
 }
 
 }  // namespace
@@ -387,8 +446,8 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
           using Codes = decltype(pass);
           BytesOf<Codes> bytes;
           std::memcpy(&bytes, stencil + at, sizeof bytes);
-          if constexpr (sizeof(Codes) == sizeof(v8u)) bytes += lowBytes(pass ? passDelta8 : failDelta8);
-          else bytes += lowBytes(pass ? passDelta4 : failDelta4);
+          if constexpr (sizeof(Codes) == sizeof(v8u)) bytes += lowBytes(selectLanes(pass, passDelta8, failDelta8));
+          else bytes += lowBytes(selectLanes(pass, passDelta4, failDelta4));
           std::memcpy(stencil + at, &bytes, sizeof bytes);
         },
         [stencil, onPass, onFail](size_t at, uint32_t, bool pass) {
@@ -410,7 +469,7 @@ void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [depth](size_t at, auto codes, auto stored, auto pass) {
           if constexpr (decltype(write)::value) {
-            const decltype(codes) next = pass ? codes : stored;
+            const decltype(codes) next = selectLanes(pass, codes, stored);
             std::memcpy(depth + at, &next, sizeof next);
           }
         },
@@ -439,7 +498,7 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
         [depth, color, value](size_t at, auto codes, auto stored, auto pass) {
           using Codes = decltype(codes);
           if constexpr (kWrite) {
-            const Codes next = pass ? codes : stored;
+            const Codes next = selectLanes(pass, codes, stored);
             std::memcpy(depth + at, &next, sizeof next);
           }
           for (int lane = 0; lane < int(sizeof(Codes) / sizeof(uint32_t)); ++lane)
@@ -557,7 +616,6 @@ constexpr std::array<std::array<int, 4>, 16> kSetLanes = [] {
 // first + 4 <= its size).
 inline int appendLanes(v4u mask, int first, int* survivors, int count) {
   const unsigned bits = laneBits(mask);
-  using v4i = int __attribute__((vector_size(16)));
   v4i lanes;
   std::memcpy(&lanes, kSetLanes[bits].data(), sizeof lanes);
   lanes += first;
