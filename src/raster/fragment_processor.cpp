@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <type_traits>
 
@@ -221,13 +222,19 @@ inline v8b lowBytes(v8u x) {
 template <class Codes>
 using BytesOf = std::conditional_t<sizeof(Codes) == sizeof(v8u), v8b, v4b>;
 
+// How a triangle's rows make depth codes, fixed at compile time so that the eight-pixel steps test
+// nothing: Encoded, through DepthCodec::encode lane by lane (Unorm24) or after depth clamping;
+// PlainFloat, a float32 buffer without depth clamping (the usual case), encode's clamp to [0, 1]
+// in vector lanes; UnitFloat, the same where every depth of the triangle is in (0, 1]
+// (TriangleSetup::depthsInUnit), so that the clamp would change nothing and is left out.
+enum class RowKind { Encoded, PlainFloat, UnitFloat };
+
 // The depth codes of a row: fragmentDepth and DepthCodec::encode with the same operations in the
 // same order (planeDepthAt's sum split into its row part and its column part), four pixels at a
 // time or one. Float32 codes are made in vector lanes; Unorm24's rounding lane by lane.
-// kPlainFloat: a float32 buffer and no depth clamping (the usual case), fixed at compile time so
-// that the eight-pixel steps test neither.
-template <bool kPlainFloat>
+template <RowKind K>
 struct RowDepth {
+  static constexpr bool kPlainFloat = K != RowKind::Encoded;
   double z0, fx0, dzdx, rowPart, offset;
   const DepthCodec& codec;
   bool clamp;
@@ -244,7 +251,10 @@ struct RowDepth {
     v4d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
     if (!kPlainFloat && clamp) z = z < lo ? v4d{} + lo : (hi < z ? v4d{} + hi : z);  // std::clamp
     v4u out;
-    if (kPlainFloat || codec.format == DepthFormat::Float32) {
+    if constexpr (K == RowKind::UnitFloat) {
+      const v4f f = __builtin_convertvector(z, v4f);
+      std::memcpy(&out, &f, sizeof out);
+    } else if (kPlainFloat || codec.format == DepthFormat::Float32) {
       const v4f f = __builtin_convertvector(clampUnitOrZero(z), v4f);  // encode's clamp
       std::memcpy(&out, &f, sizeof out);
     } else {
@@ -276,8 +286,10 @@ struct RowDepth {
   }
 };
 
-bool plainFloatDepth(const DepthCodec& codec, bool depthClamp) {
-  return codec.format == DepthFormat::Float32 && !depthClamp;
+// The row kind of a triangle (TriangleSetup::depthsInUnit says where the clamp can go).
+RowKind rowKindOf(const TriangleSetup& t, const DepthCodec& codec, bool depthClamp) {
+  if (codec.format != DepthFormat::Float32 || depthClamp) return RowKind::Encoded;
+  return t.depthsInUnit ? RowKind::UnitFloat : RowKind::PlainFloat;
 }
 
 // fn(std::true_type{}) or fn(std::false_type{}): a flag made a compile-time constant.
@@ -287,23 +299,29 @@ void withFlag(bool flag, Fn&& fn) {
   else fn(std::false_type{});
 }
 
-// fn(compare, plain) with the depth function and plainFloatDepth as compile-time constants: what
+// fn(compare, kind) with the depth function and the row kind as compile-time constants: what
 // depthTestRows is instantiated for.
 template <class Fn>
-void withRowKind(CompareFunc func, bool plain, Fn&& fn) {
-  withCompare(func, [&](auto f) { withFlag(plain, [&](auto p) { fn(f, p); }); });
+void withRowKind(CompareFunc func, RowKind kind, Fn&& fn) {
+  withCompare(func, [&](auto f) {
+    switch (kind) {
+      case RowKind::Encoded: fn(f, std::integral_constant<RowKind, RowKind::Encoded>{}); return;
+      case RowKind::PlainFloat: fn(f, std::integral_constant<RowKind, RowKind::PlainFloat>{}); return;
+      case RowKind::UnitFloat: fn(f, std::integral_constant<RowKind, RowKind::UnitFloat>{}); return;
+    }
+  });
 }
-// The same with the depth-write flag as a third constant: fn(compare, plain, write).
+// The same with the depth-write flag as a third constant: fn(compare, kind, write).
 template <class Fn>
-void withRowKind(CompareFunc func, bool plain, bool write, Fn&& fn) {
-  withRowKind(func, plain, [&](auto f, auto p) { withFlag(write, [&](auto w) { fn(f, p, w); }); });
+void withRowKind(CompareFunc func, RowKind kind, bool write, Fn&& fn) {
+  withRowKind(func, kind, [&](auto f, auto k) { withFlag(write, [&](auto w) { fn(f, k, w); }); });
 }
 
 }  // namespace
 
 // The depth codes of n pixels of a row (RowDepth).
 void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const {
-  const RowDepth<false> row(t, y, fb_.depthCodec(), state_.depthClamp, depthLo_, depthHi_);
+  const RowDepth<RowKind::Encoded> row(t, y, fb_.depthCodec(), state_.depthClamp, depthLo_, depthHi_);
   int i = 0;
   for (; i + 4 <= n; i += 4) {
     const v4u four = row.codes4(x + i);
@@ -371,7 +389,7 @@ inline Codes selectLanes(Codes pass, Codes a, Codes b) {
 // block(at, codes, stored, pass) for each eight or four pixels from buffer index `at` (vectors of
 // codes: v8u or v4u; pass a lane mask), single(at, code, pass) for the last one to three of a row.
 // Counts the fragments and the failed depth tests. F = Always (no depth test) reads no depth.
-template <CompareFunc F, bool kPlainFloat, class Block, class Single>
+template <CompareFunc F, RowKind K, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
                    uint64_t& fragments, uint64_t& failed, const Block& block, const Single& single) {
   const uint32_t* const depth = fb.depthCodes().data();
@@ -382,7 +400,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   rasterizeRowSpans(t, region, [&, depth, width](int y, int xl, int xr) {
     const size_t at = size_t(y) * size_t(width) + size_t(xl);
     const int n = xr - xl + 1;
-    const RowDepth<kPlainFloat> row(t, y, fb.depthCodec(), clamp, lo, hi);
+    const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
     // Copies for the row: stores through the buffers may alias anything in memory, so values
     // read through the closures would be read again after every store.
     const uint32_t* const stored = depth + at;
@@ -438,9 +456,9 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   // anything, so a delta read from a byte would be read and broadcast again at every step.
   const v8u passDelta8 = v8u{} + onPass, failDelta8 = v8u{} + onFail;
   const v4u passDelta4 = v4u{} + onPass, failDelta4 = v4u{} + onFail;
-  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, plainFloatDepth(fb_.depthCodec(), state_.depthClamp),
-              [&](auto f, auto plain) {
-    depthTestRows<decltype(f)::value, decltype(plain)::value>(
+  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, rowKindOf(t, fb_.depthCodec(), state_.depthClamp),
+              [&](auto f, auto kind) {
+    depthTestRows<decltype(f)::value, decltype(kind)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [stencil, passDelta8, failDelta8, passDelta4, failDelta4](size_t at, auto, auto, auto pass) {
           using Codes = decltype(pass);
@@ -464,8 +482,8 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
 void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region) {
   uint32_t* const depth = fb_.depthCodes().data();
   uint64_t fragments = 0, failed = 0;
-  auto rows = [&](auto f, auto plain, auto write) {
-    depthTestRows<decltype(f)::value, decltype(plain)::value>(
+  auto rows = [&](auto f, auto kind, auto write) {
+    depthTestRows<decltype(f)::value, decltype(kind)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [depth](size_t at, auto codes, auto stored, auto pass) {
           if constexpr (decltype(write)::value) {
@@ -477,7 +495,7 @@ void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region
           if (decltype(write)::value && pass) depth[at] = code;
         });
   };
-  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, plainFloatDepth(fb_.depthCodec(), state_.depthClamp),
+  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, rowKindOf(t, fb_.depthCodec(), state_.depthClamp),
               writesDepth_, rows);
   stats_.fragments += fragments;
   stats_.depthFailed += failed;
@@ -491,9 +509,9 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
   glm::vec4* const color = fb_.color().data();
   const glm::vec4 value = writeColor(glm::vec4(0.0f), *constantColor_, state_.colorMask);
   uint64_t fragments = 0, failed = 0;
-  auto rows = [&](auto f, auto plain, auto write) {
+  auto rows = [&](auto f, auto kind, auto write) {
     constexpr bool kWrite = decltype(write)::value;
-    depthTestRows<decltype(f)::value, decltype(plain)::value>(
+    depthTestRows<decltype(f)::value, decltype(kind)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
         [depth, color, value](size_t at, auto codes, auto stored, auto pass) {
           using Codes = decltype(codes);
@@ -510,7 +528,7 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
           color[at] = value;
         });
   };
-  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, plainFloatDepth(fb_.depthCodec(), state_.depthClamp),
+  withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, rowKindOf(t, fb_.depthCodec(), state_.depthClamp),
               writesDepth_, rows);
   stats_.fragments += fragments;
   stats_.depthFailed += failed;

@@ -53,6 +53,10 @@ struct TriangleSetup {
   // (snapping moves a vertex by up to 1/512 pixel; on a steep plane that would be hundreds of
   // 24-bit depth units): z(x, y) = z0 + dzdx (x - fx0) + dzdy (y - fy0) at pixel centres.
   double dzdx = 0.0, dzdy = 0.0;
+  // Every depth computed at a covered pixel centre (with the offset, before any clamp) is in
+  // (0, 1], so that the depth codec's clamp changes none: set for triangles of 256 pixels and
+  // more (their span loops leave the clamp out), false where not shown or not asked.
+  bool depthsInUnit = false;
 
   // E_i at the centre of pixel (px, py).
   int64_t edgeAt(int i, int px, int py) const;

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "raster/projection.h"
+#include "raster/rasterizer.h"
 #include "raster/renderer.h"
 #include "raster/triangle_setup.h"
 #include "support/raster_harness.h"
@@ -173,4 +174,59 @@ TEST_CASE("polygon offset below 0 or above 1 is clamped to the depth range", "[r
   s.polygonOffset = {true, 0.0, 1e9};
   draw(r, s, windowRect(s.viewport, 0, 0, 4, 4, 0.25));
   CHECK(fb.depthAt(1, 1) == 1.0);
+}
+
+// TriangleSetup::depthsInUnit lets the span loops leave out the depth codec's clamp, so it may be
+// set only where every covered pixel's depth (planeDepthAt + offset, as computed) is in (0, 1].
+TEST_CASE("depthsInUnit is set only where every covered depth is above 0 and at most 1", "[raster][depth][spans]") {
+  Framebuffer fb(64, 64);
+  RenderState s = fullViewportState(fb);
+  const DepthCodec codec{DepthFormat::Float32};
+  auto setup = [&](std::initializer_list<glm::dvec3> points, TriangleSetup& t) {
+    const std::vector<ClipVertex> v = windowTriangles(s.viewport, points);
+    return setupTriangle(toWindow(v[0], s.viewport), toWindow(v[1], s.viewport), toWindow(v[2], s.viewport),
+                         FrontFacing, s, codec, t);
+  };
+  TriangleSetup t;
+  // Hand-made cases: a large triangle well inside the range; one that reaches the far plane
+  // exactly (1 would be kept, but no margin is left: not shown); one that reaches 0; one too small
+  // to be asked (a bounding box under 256 pixels).
+  REQUIRE(setup({{0, 0, 0.25}, {60, 0, 0.5}, {0, 60, 0.75}}, t));
+  CHECK(t.depthsInUnit);
+  REQUIRE(setup({{0, 0, 0.25}, {60, 0, 1.0}, {0, 60, 0.75}}, t));
+  CHECK_FALSE(t.depthsInUnit);
+  REQUIRE(setup({{0, 0, 0.0}, {60, 0, 0.5}, {0, 60, 0.75}}, t));
+  CHECK_FALSE(t.depthsInUnit);
+  REQUIRE(setup({{0, 0, 0.25}, {10, 0, 0.5}, {0, 10, 0.75}}, t));
+  CHECK_FALSE(t.depthsInUnit);
+  // A polygon offset that pushes a triangle past the far plane clears it.
+  s.polygonOffset = {true, 0.0, 1e9};
+  REQUIRE(setup({{0, 0, 0.25}, {60, 0, 0.5}, {0, 60, 0.75}}, t));
+  CHECK_FALSE(t.depthsInUnit);
+  s.polygonOffset.enabled = false;
+
+  // Random triangles whose depths come within 1e-15 .. 1e-3 of 0 and 1: wherever the flag is set,
+  // every covered centre's depth is in (0, 1]. Some must be set, or the test shows nothing.
+  TestRandom r(20261125);
+  int set = 0;
+  for (int i = 0; i < 4000; ++i) {
+    auto depth = [&] {
+      const double gap = std::pow(10.0, r.uniform(-15.0, -3.0));
+      switch (r.below(3)) {
+        case 0: return gap;
+        case 1: return 1.0 - gap;
+        default: return r.uniform(0.0, 1.0);
+      }
+    };
+    s.polygonOffset = {r.below(4) == 0, r.uniform(-1.0, 1.0), double(r.below(9)) - 4.0};
+    const double cx = r.uniform(0.0, 64.0), cy = r.uniform(0.0, 64.0), size = r.uniform(8.0, 80.0);
+    auto point = [&] { return glm::dvec3(cx + r.uniform(-size, size), cy + r.uniform(-size, size), depth()); };
+    if (!setup({point(), point(), point()}, t) || !t.depthsInUnit) continue;
+    ++set;
+    rasterizeTriangle(t, Rect{0, 0, 64, 64}, [&](int x, int y, int64_t, int64_t, int64_t) {
+      const double z = planeDepthAt(t, x, y) + t.depthOffset;
+      if (!(z > 0.0 && z <= 1.0)) FAIL("pixel " << x << "," << y << " of triangle " << i << " has depth " << z);
+    });
+  }
+  CHECK(set > 200);
 }
