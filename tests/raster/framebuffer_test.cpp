@@ -76,6 +76,15 @@ TEST_CASE("polygon offset r: 1/(2^24-1) for unorm24, 2^(e-23) of the largest dep
   CHECK(f.resolvableDifference(1.0) == std::ldexp(1.0, -23));
   // r is exactly one float ulp there: adding it moves the code by one.
   CHECK(f.encode(0.75 + f.resolvableDifference(0.75)) == f.encode(0.75) + 1);
+  // Every exponent a depth can have, at both ends of its binade and between (the exponent is
+  // read from the bits; ilogb is the independent reading), down to the smallest doubles.
+  for (int e = -1074; e <= 0; ++e)
+    for (const double m : {1.0, 1.5, 2.0 - 0x1p-52}) {
+      const double z = std::ldexp(m, e);
+      if (z > 1.0 || z == 0.0) continue;
+      INFO("z = " << z);
+      CHECK(f.resolvableDifference(z) == std::ldexp(1.0, std::ilogb(z) - 23));
+    }
 }
 
 TEST_CASE("a framebuffer allocates each buffer only when asked, cleared to GL's initial values", "[raster]") {
