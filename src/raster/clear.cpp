@@ -23,25 +23,18 @@ namespace {
 // fewer (a 160x128 test frame is one part; an 800x640 frame 15, a 2048² map 128).
 constexpr size_t kPixelsPerPart = 1 << 15;
 
-// Runs fn(first, count) over the cleared region's pixels in runs [first, first + count) — whole
-// rows as one run — cut into parts of rows that `parallel` may fill at once. Every pixel is
-// written once by one part, so the bytes do not depend on the thread count.
+// Runs fn(first, count) over the region's pixels in rows [y0, y1) in runs [first, first + count)
+// — whole rows as one run.
 template <class Fn>
-void forEachClearedRun(const Framebuffer& fb, const RenderState& state, const ParallelFor& parallel, Fn&& fn) {
-  const Rect r = clearRegion(fb, state);
-  if (r.width == 0 || r.height == 0) return;
-  const size_t pixels = size_t(r.width) * size_t(r.height);
-  const int parts = int(std::clamp<size_t>(pixels / kPixelsPerPart, 1, size_t(r.height)));
-  const bool wholeRows = r.x == 0 && r.width == fb.width();
-  auto part = [&](int p) {
-    const int y0 = r.y + int(int64_t(r.height) * p / parts), y1 = r.y + int(int64_t(r.height) * (p + 1) / parts);
-    if (wholeRows) fn(fb.index(0, y0), size_t(r.width) * size_t(y1 - y0));
-    else
-      for (int y = y0; y < y1; ++y) fn(fb.index(r.x, y), size_t(r.width));
-  };
-  if (parts > 1 && parallel) parallel(parts, part);
-  else
-    for (int p = 0; p < parts; ++p) part(p);
+void forEachRun(const Framebuffer& fb, const Rect& r, int y0, int y1, Fn&& fn) {
+  y0 = std::max(y0, r.y);
+  y1 = std::min(y1, r.y + r.height);
+  if (r.width == 0 || y0 >= y1) return;
+  if (r.x == 0 && r.width == fb.width()) {
+    fn(fb.index(0, y0), size_t(r.width) * size_t(y1 - y0));
+    return;
+  }
+  for (int y = y0; y < y1; ++y) fn(fb.index(r.x, y), size_t(r.width));
 }
 
 bool coversWholeBuffer(const Framebuffer& fb, const RenderState& state) {
@@ -49,56 +42,106 @@ bool coversWholeBuffer(const Framebuffer& fb, const RenderState& state) {
   return r.x == 0 && r.y == 0 && r.width == fb.width() && r.height == fb.height();
 }
 
-}  // namespace
+bool allChannels(const RenderState& state) {
+  return state.colorMask[0] && state.colorMask[1] && state.colorMask[2] && state.colorMask[3];
+}
 
-// A buffer that does not exist yet and that the clear writes whole is made unwritten (resize
-// without a value: PixelVector), so that the clear writes each byte once, on all threads; any
-// other is made as ensure* makes it.
-void clearColor(Framebuffer& fb, const RenderState& state, const glm::vec4& value, const ParallelFor& parallel) {
+void colorRows(Framebuffer& fb, const RenderState& state, const glm::vec4& value, int y0, int y1) {
   const glm::dvec4 v(glm::clamp(value, 0.0f, 1.0f));
   const auto& mask = state.colorMask;
-  const bool allChannels = mask[0] && mask[1] && mask[2] && mask[3];
-  if (!fb.hasColor() && allChannels && coversWholeBuffer(fb, state)) fb.color().resize(fb.pixelCount());
-  fb.ensureColor();
   glm::vec4* color = fb.color().data();
-  if (allChannels) {
+  const Rect r = clearRegion(fb, state);
+  if (allChannels(state)) {
     const glm::vec4 written = writeColor(glm::vec4(0.0f), v, mask);  // no stored channel survives
-    forEachClearedRun(fb, state, parallel, [&](size_t first, size_t count) { std::fill_n(color + first, count, written); });
+    forEachRun(fb, r, y0, y1, [&](size_t first, size_t count) { std::fill_n(color + first, count, written); });
     return;
   }
-  forEachClearedRun(fb, state, parallel, [&](size_t first, size_t count) {
+  forEachRun(fb, r, y0, y1, [&](size_t first, size_t count) {
     for (size_t i = first; i < first + count; ++i) color[i] = writeColor(color[i], v, mask);
   });
 }
 
-void clearDepth(Framebuffer& fb, const RenderState& state, double value, const ParallelFor& parallel) {
-  const uint32_t code = fb.depthCodec().encode(value);
-  if (!fb.hasDepth() && state.depthWrite && coversWholeBuffer(fb, state)) fb.depthCodes().resize(fb.pixelCount());
-  fb.ensureDepth();
+void depthRows(Framebuffer& fb, const RenderState& state, double value, int y0, int y1) {
   if (!state.depthWrite) return;
+  const uint32_t code = fb.depthCodec().encode(value);
   uint32_t* depth = fb.depthCodes().data();
-  forEachClearedRun(fb, state, parallel, [&](size_t first, size_t count) { std::fill_n(depth + first, count, code); });
+  forEachRun(fb, clearRegion(fb, state), y0, y1,
+             [&](size_t first, size_t count) { std::fill_n(depth + first, count, code); });
 }
 
-void clearStencil(Framebuffer& fb, const RenderState& state, int value, const ParallelFor& parallel) {
+void stencilRows(Framebuffer& fb, const RenderState& state, int value, int y0, int y1) {
   const uint8_t v = uint8_t(value & 0xFF);  // GL masks the clear value to the buffer's bits
   const uint8_t mask = state.stencil[FrontFacing].writeMask;
-  if (!fb.hasStencil() && mask == 0xFF && coversWholeBuffer(fb, state)) fb.stencil().resize(fb.pixelCount());
-  fb.ensureStencil();
   uint8_t* stencil = fb.stencil().data();
-  forEachClearedRun(fb, state, parallel, [&](size_t first, size_t count) {
+  forEachRun(fb, clearRegion(fb, state), y0, y1, [&](size_t first, size_t count) {
     if (mask == 0xFF) std::fill_n(stencil + first, count, v);
     else
       for (size_t i = first; i < first + count; ++i) stencil[i] = writeStencil(stencil[i], v, mask);
   });
 }
 
-void clearAccum(Framebuffer& fb, const RenderState& state, const glm::vec4& value, const ParallelFor& parallel) {
-  if (!fb.hasAccum() && coversWholeBuffer(fb, state)) fb.accum().resize(fb.pixelCount());
-  fb.ensureAccum();
+void accumRows(Framebuffer& fb, const RenderState& state, const glm::vec4& value, int y0, int y1) {
   const glm::vec4 v = glm::clamp(value, -1.0f, 1.0f);
   glm::vec4* accum = fb.accum().data();
-  forEachClearedRun(fb, state, parallel, [&](size_t first, size_t count) { std::fill_n(accum + first, count, v); });
+  forEachRun(fb, clearRegion(fb, state), y0, y1,
+             [&](size_t first, size_t count) { std::fill_n(accum + first, count, v); });
+}
+
+}  // namespace
+
+void prepareClear(Framebuffer& fb, const ClearRequest& c) {
+  const bool whole = coversWholeBuffer(fb, c.state);
+  if (c.color) {
+    if (!fb.hasColor() && allChannels(c.state) && whole) fb.color().resize(fb.pixelCount());
+    fb.ensureColor();
+  }
+  if (c.depth) {
+    if (!fb.hasDepth() && c.state.depthWrite && whole) fb.depthCodes().resize(fb.pixelCount());
+    fb.ensureDepth();
+  }
+  if (c.stencil) {
+    if (!fb.hasStencil() && c.state.stencil[FrontFacing].writeMask == 0xFF && whole)
+      fb.stencil().resize(fb.pixelCount());
+    fb.ensureStencil();
+  }
+  if (c.accum) {
+    if (!fb.hasAccum() && whole) fb.accum().resize(fb.pixelCount());
+    fb.ensureAccum();
+  }
+}
+
+void clearRows(Framebuffer& fb, const ClearRequest& c, int y0, int y1) {
+  if (c.color) colorRows(fb, c.state, *c.color, y0, y1);
+  if (c.depth) depthRows(fb, c.state, *c.depth, y0, y1);
+  if (c.stencil) stencilRows(fb, c.state, *c.stencil, y0, y1);
+  if (c.accum) accumRows(fb, c.state, *c.accum, y0, y1);
+}
+
+void clear(Framebuffer& fb, const ClearRequest& c, const ParallelFor& parallel) {
+  prepareClear(fb, c);
+  const Rect r = clearRegion(fb, c.state);
+  if (r.width == 0 || r.height == 0) return;
+  const size_t pixels = size_t(r.width) * size_t(r.height);
+  const int parts = int(std::clamp<size_t>(pixels / kPixelsPerPart, 1, size_t(r.height)));
+  auto part = [&](int p) {
+    clearRows(fb, c, r.y + int(int64_t(r.height) * p / parts), r.y + int(int64_t(r.height) * (p + 1) / parts));
+  };
+  if (parts > 1 && parallel) parallel(parts, part);
+  else
+    for (int p = 0; p < parts; ++p) part(p);
+}
+
+void clearColor(Framebuffer& fb, const RenderState& state, const glm::vec4& value, const ParallelFor& parallel) {
+  clear(fb, ClearRequest{state, value, {}, {}, {}}, parallel);
+}
+void clearDepth(Framebuffer& fb, const RenderState& state, double value, const ParallelFor& parallel) {
+  clear(fb, ClearRequest{state, {}, value, {}, {}}, parallel);
+}
+void clearStencil(Framebuffer& fb, const RenderState& state, int value, const ParallelFor& parallel) {
+  clear(fb, ClearRequest{state, {}, {}, value, {}}, parallel);
+}
+void clearAccum(Framebuffer& fb, const RenderState& state, const glm::vec4& value, const ParallelFor& parallel) {
+  clear(fb, ClearRequest{state, {}, {}, {}, value}, parallel);
 }
 
 }  // namespace shadowref

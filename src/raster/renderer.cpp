@@ -47,6 +47,31 @@ Renderer::Renderer(Framebuffer& framebuffer, int threads)
   setThreads(threads);
 }
 
+Renderer::~Renderer() {
+  // Draws still waiting here were abandoned (an exception left their DeferredDraws): their
+  // geometry may be gone, so only clears that wait alone are done.
+  if (pending_.empty() && queued_.empty() && !pendingClears_.empty()) clearsNow();
+}
+
+void Renderer::clear(const ClearRequest& request) {
+  prepareClear(fb_, request);
+  pendingClears_.push_back({request, pending_.size()});
+}
+
+void Renderer::clearsNow() {
+  for (const PendingClear& c : pendingClears_) {
+    // The buffers were made when the clear was asked for; filling is all that is left.
+    const Rect r = clearRegion(fb_, c.request.state);
+    if (r.width == 0 || r.height == 0) continue;
+    const int rows = r.height;
+    const int parts = std::clamp(int(int64_t(r.width) * rows / (int64_t(1) << 15)), 1, rows);
+    parallelFor(parts, [&](int p) {
+      clearRows(fb_, c.request, r.y + int(int64_t(rows) * p / parts), r.y + int(int64_t(rows) * (p + 1) / parts));
+    });
+  }
+  pendingClears_.clear();
+}
+
 void Renderer::setThreads(int threads) {
   if (threads <= 0) threads = defaultThreadCount();
   pool_ = threadPoolForThisThread(threads);
@@ -436,7 +461,10 @@ void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, Fragment
 // thread — rather than every setup being binned on one thread before the bands start.
 void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats) const {
   std::optional<FragmentProcessor> fragments;
-  for (const PendingDraw& draw : pending_) {
+  size_t nextClear = 0;
+  for (size_t d = 0; d < pending_.size(); ++d) {
+    clearRowsBefore(d, nextClear, y0, y1);
+    const PendingDraw& draw = pending_[d];
     const int first = std::max(y0, draw.minY), last = std::min(y1, draw.maxY);
     if (first > last) continue;  // also a draw with nothing to rasterize (minY > maxY)
     Rect band = draw.region;
@@ -455,6 +483,28 @@ void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats) const {
       rasterizeOne(*pendingSetups_[i], band, *fragments);
     }
   }
+  clearRowsBefore(pending_.size(), nextClear, y0, y1);
+}
+
+// The band's rows [y0, y1] of the waiting clears from `next` on that come before draw `draw`.
+void Renderer::clearRowsBefore(size_t draw, size_t& next, int y0, int y1) const {
+  for (; next < pendingClears_.size() && pendingClears_[next].beforeDraw <= draw; ++next)
+    clearRows(fb_, pendingClears_[next].request, y0, y1 + 1);
+}
+
+// How many bands the waiting clears ask for: enough that each band's share of the cleared bytes
+// fits in a core's own cache (kBandBytes, half of a common 1 MB L2) — cleared whole, a large
+// buffer would go out to memory and come back when the draws read it.
+int Renderer::cacheBands() const {
+  constexpr int64_t kBandBytes = int64_t(1) << 19;
+  int64_t bytes = 0;
+  for (const PendingClear& c : pendingClears_) {
+    const Rect r = clearRegion(fb_, c.request.state);
+    const int64_t perPixel = (c.request.color ? int64_t(sizeof(glm::vec4)) : 0) + (c.request.depth ? 4 : 0) +
+                             (c.request.stencil ? 1 : 0) + (c.request.accum ? int64_t(sizeof(glm::vec4)) : 0);
+    bytes += int64_t(r.width) * int64_t(r.height) * perPixel;
+  }
+  return int(std::min<int64_t>(bytes / kBandBytes, 64));
 }
 
 void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
@@ -470,7 +520,8 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
 // returns the count. The threads take the bands in order, so the bands get
 // shrinking shares of the estimated work — maxBands + 1, maxBands, … 2 parts — and the last ones,
 // small, even out the threads' ends. A row's work is estimated as its pixels in the pending
-// triangles' bounding boxes, plus a row's and a triangle's fixed costs in pixels: the city's
+// triangles' bounding boxes and a quarter of its cleared pixels, plus a row's and a triangle's
+// fixed costs in pixels: the city's
 // shadow volumes crowd into the lower rows, and equal rows would leave one thread most of them.
 int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
   constexpr int64_t kRowCost = 8, kTriangleCost = 64;
@@ -488,6 +539,12 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
       rowWork_[size_t(top - minY) + 1] -= width + kRowCost;
       rowStart_[size_t(bottom - minY)] += kTriangleCost;
     }
+  }
+  for (const PendingClear& c : pendingClears_) {  // a cleared row costs about a quarter of a drawn one
+    const Rect r = clearRegion(fb_, c.request.state);
+    if (r.width == 0 || r.height == 0) continue;
+    rowWork_[size_t(r.y - minY)] += r.width / 4 + kRowCost;
+    rowWork_[size_t(r.y + r.height - minY)] -= r.width / 4 + kRowCost;
   }
   int64_t total = 0;
   for (size_t r = 0; r < rows; ++r) {
@@ -514,10 +571,6 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
 
 void Renderer::flush() {
   if (!queued_.empty()) assembleQueued();
-  if (pending_.empty()) {
-    clearPending();
-    return;
-  }
   int minY = fb_.height(), maxY = -1;
   int64_t candidates = 0;
   for (const PendingDraw& d : pending_) {
@@ -525,16 +578,25 @@ void Renderer::flush() {
     maxY = std::max(maxY, d.maxY);
     if (candidates < kParallelThreshold) candidates += candidatePixels(pendingBounds_, d.first, d.count, d.region);
   }
-  if (maxY < minY) {  // every pending draw was culled or clipped away whole
+  if (maxY < minY) {  // no draw left to rasterize (none made, or all culled or clipped away whole)
+    clearsNow();
     clearPending();
     return;
   }
-  const int threads = pool_ ? pool_->threadCount() : 1;
-  const int maxBands = std::min(threads * kBandsPerThread, (maxY - minY + 1) / kMinBandRows);
-  const bool parallel = pool_ && maxBands >= 2 && candidates >= kParallelThreshold;
-  const int bands = parallel ? splitIntoBands(minY, maxY, maxBands) : 1;
-  if (!parallel) {
+  for (const PendingClear& c : pendingClears_) {  // the bands cover the cleared rows too
+    const Rect r = clearRegion(fb_, c.request.state);
+    if (r.width == 0 || r.height == 0) continue;
+    minY = std::min(minY, r.y);
+    maxY = std::max(maxY, r.y + r.height - 1);
+  }
+  const bool parallel = pool_ && candidates >= kParallelThreshold;
+  const int threadBands = parallel ? pool_->threadCount() * kBandsPerThread : 1;
+  const int maxBands = std::min(std::max(threadBands, cacheBands()), (maxY - minY + 1) / kMinBandRows);
+  const int bands = maxBands >= 2 ? splitIntoBands(minY, maxY, maxBands) : 1;
+  if (bands == 1) {
     rasterizeBand(minY, maxY, stats_);
+  } else if (!parallel) {  // bands for the caches only, in order on this thread
+    for (int b = 0; b < bands; ++b) rasterizeBand(bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1, stats_);
   } else {
     // Each band of rows belongs to one task, which replays its setups in submission order.
     bandStats_.assign(size_t(bands), BandStats{});
@@ -548,6 +610,7 @@ void Renderer::flush() {
 
 void Renderer::clearPending() {
   pending_.clear();
+  pendingClears_.clear();
   pendingSetups_.clear();
   pendingBounds_.clear();
   pendingBlocks_.clear();

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "raster/clear.h"
 #include "raster/clipper.h"
 #include "raster/fragment_processor.h"
 #include "raster/fragment_shader.h"
@@ -34,6 +35,7 @@ struct DrawCall {
 class Renderer {
  public:
   explicit Renderer(Framebuffer& framebuffer, int threads = 1);
+  ~Renderer();  // does the clears still waiting (clear)
 
   // Rasterizes bands of rows on `threads` threads (0: all cores). The buffers come out
   // byte-identical for every thread count.
@@ -45,12 +47,24 @@ class Renderer {
   // rasterizes them — at once, or with a DeferredDraws alive, when the last one ends.
   void draw(const DrawCall& call);
 
+  // glClear (clear.h) as the start of what is drawn next: the buffers are made at once, their rows
+  // filled at the next flush (the next draw without a DeferredDraws alive, or the end of the last
+  // DeferredDraws) — each band's rows by the thread that draws into them next, right before it
+  // does, so that a cleared band is in that thread's cache when the draws read it (a 2048² depth
+  // map or an 800x640 colour buffer, cleared whole and read back, is more than the caches hold).
+  // The clear keeps its place among the draws. The framebuffer must not be read before that flush
+  // (framebuffer() and the destructor do the clears still waiting).
+  void clear(const ClearRequest& request);
+
   // The reference path: every fragment of every Renderer made after this call goes through the
   // one-fragment function the pixel history uses, instead of the span loops. Tests render with
   // both and require the same bytes; nothing else should switch it.
   static void useReferencePath(bool on);
 
-  Framebuffer& framebuffer() { return fb_; }
+  Framebuffer& framebuffer() {
+    if (deferDepth_ == 0 && !pendingClears_.empty()) flush();
+    return fb_;
+  }
 
   // Rasterizes every draw made since the first DeferredDraws began (DeferredDraws calls it).
   void flush();
@@ -59,10 +73,6 @@ class Renderer {
   // are done: for independent work between draws, such as building each caster's volume. The
   // tasks must not draw.
   void parallelFor(int count, const std::function<void(int)>& task);
-  // parallelFor as a ParallelFor: for the clears (clear.h), which fill parts of rows at once.
-  ParallelFor parallel() {
-    return [this](int count, const std::function<void(int)>& task) { parallelFor(count, task); };
-  }
   const RasterStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
 
@@ -139,6 +149,16 @@ class Renderer {
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();
   void rasterizeBand(int y0, int y1, RasterStats& stats) const;
+  // A clear waiting for the flush, done before pending_[beforeDraw] (after every draw if there are
+  // no more).
+  struct PendingClear {
+    ClearRequest request;
+    size_t beforeDraw = 0;
+  };
+  std::vector<PendingClear> pendingClears_;
+  void clearsNow();                                      // the waiting clears, when no draw waits
+  void clearRowsBefore(size_t draw, size_t& next, int y0, int y1) const;
+  int cacheBands() const;
   void clearPending();  // forgets every pending draw, its setups and what they point into
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 

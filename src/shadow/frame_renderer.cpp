@@ -44,8 +44,7 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
   state.cull = CullMode::Back;
   PassClock clock(result);
   clock.run("clear", [&] {
-    clearColor(renderer.framebuffer(), state, glm::vec4(glm::vec3(scene.background), 1.0f), renderer.parallel());
-    clearDepth(renderer.framebuffer(), state, 1.0, renderer.parallel());
+    renderer.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
   });
   clock.run("lit", [&] { drawLit(renderer, state, scene, view, prepared, scene.lights, true); });
   if (options.onPass) options.onPass("01-lit", renderer.framebuffer());

@@ -154,7 +154,7 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   // A focused depth range (focusedDepthWarp) puts casters between the light and the focus body
   // before the near plane: clamped to depth 0 they still shadow everything behind them.
   state.depthClamp = depthClamp;
-  clearDepth(fb, state, 1.0, renderer.parallel());
+  renderer.clear({.state = state, .depth = 1.0});  // filled band by band with the draws below
 
   // Every caster's vertices in the light's clip space, on all threads, kept until the draws are
   // rasterized: they are then assembled together too (DeferredDraws' Geometry::Kept).

@@ -266,8 +266,7 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
         result.notes.push_back(note.str());
       }
     }
-    clearColor(fb, state, glm::vec4(glm::vec3(scene.background), 1.0f), renderer.parallel());
-    clearDepth(fb, state, 1.0, renderer.parallel());
+    renderer.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
     if (!drawCameraPass(renderer, state, scene, view, prepared, shadows) && k == 0)
       result.notes.push_back("Gouraud materials lit per pixel: more than " +
                              std::to_string(ShadowMappedGouraudShader::kMaxLights) + " shadow-mapped lights");

@@ -199,8 +199,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
 
   const bool darken = scene.shadow.darkenComposite;
   pass(darken ? "lit" : "ambient", [&] {
-    clearColor(fb, base, glm::vec4(glm::vec3(scene.background), 1.0f), renderer.parallel());
-    clearDepth(fb, base, 1.0, renderer.parallel());
+    renderer.clear({.state = base, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
     if (darken) drawLit(renderer, base, scene, view, prepared, lights, true, DrawKind::Lit);
     else drawAmbient(renderer, base, scene, view, prepared);
   });
@@ -223,7 +222,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
     LightTotals totals;
     const RasterStats before = renderer.stats();
     pass("stencil-" + suffix, [&] {
-      clearStencil(fb, base, 0, renderer.parallel());
+      renderer.clear({.state = base, .stencil = 0});
       totals = drawVolumePass(renderer, volumeBase, scene, view, prepared, light, method, volumes);
     });
     result.notes.push_back(lightNote(i, light, totals, before, renderer.stats()));
