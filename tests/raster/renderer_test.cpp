@@ -1,6 +1,7 @@
 // The draw call as a whole: scissor, the canonical vertex rotation that makes equal triangles give
 // bit-equal depths (the shadow-volume front cap, SPEC.md §3 step 2), determinism, pixel history.
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -290,4 +291,113 @@ TEST_CASE("pixel history records each fragment at the watched pixel with tests a
   CHECK(int(e[3].stencilAfter) == 0);
 
   CHECK(fb.stencilAt(8, 8) == 1);  // the unwatched draw 5 still ran: INCR 0 -> 1
+}
+
+// ---------------------------------------------------------------------------------------------
+// Renderer::clear: a clear waits for the flush and is done band by band with the draws around it.
+
+namespace {
+
+// Ten random triangles over the whole frame with colour varyings, in a random state.
+std::vector<ClipVertex> randomBatch(TestRandom& rng, const Viewport& vp, RenderState& s) {
+  s.depthTest = rng.below(4) != 0;
+  s.depthFunc = CompareFunc(rng.below(8));
+  s.depthWrite = rng.below(3) != 0;
+  s.stencilTest = rng.below(2) != 0;
+  for (StencilFaceState& f : s.stencil) {
+    f.func = CompareFunc(rng.below(8));
+    f.ref = rng.below(256);
+    f.sfail = StencilOp(rng.below(8));
+    f.dpfail = StencilOp(rng.below(8));
+    f.dppass = StencilOp(rng.below(8));
+  }
+  std::vector<ClipVertex> v;
+  for (int t = 0; t < 10; ++t)
+    for (int k = 0; k < 3; ++k) {
+      ClipVertex cv = windowVertex(vp, rng.uniform(-50.0, vp.width + 50.0), rng.uniform(-50.0, vp.height + 50.0),
+                                   rng.uniform(0.0, 1.0));
+      for (int c = 0; c < 4; ++c) cv.varyings[size_t(c)] = rng.uniform(0.0, 1.0);
+      v.push_back(cv);
+    }
+  return v;
+}
+
+// The same sequence — draw, a scissored depth and stencil clear whose rows reach past the
+// draws', draw, a colour clear, draw — done at once (clears of clear.h, no DeferredDraws) or with
+// the renderer's clears inside one DeferredDraws on `threads` threads.
+Framebuffer clearsBetweenDraws(bool throughRenderer, int threads, uint64_t seed) {
+  Framebuffer fb(512, 384);  // 4 MB of colour, depth and stencil: the clears ask for cache bands
+  TestRandom rng(seed);
+  RenderState s = fullViewportState(fb);
+  RenderState scissored = s;
+  scissored.scissorTest = true;
+  scissored.scissor = {37, 11, 300, 350};
+  const ColorVaryingShader shader;
+  std::vector<std::vector<ClipVertex>> batches;
+  std::vector<RenderState> states;
+  for (int b = 0; b < 3; ++b) {
+    states.push_back(s);
+    batches.push_back(randomBatch(rng, s.viewport, states.back()));
+  }
+  // The draws stay inside rows 100 .. 299, so the clears' other rows are the clears' alone.
+  for (RenderState& st : states) {
+    st.scissorTest = true;
+    st.scissor = {0, 100, 512, 200};
+  }
+  Renderer r(fb, threads);
+  auto clearAll = [&](const ClearRequest& c) {
+    if (throughRenderer) r.clear(c);
+    else clear(fb, c);
+  };
+  {
+    std::optional<DeferredDraws> deferred;
+    if (throughRenderer) deferred.emplace(r);
+    clearAll({.state = s, .color = glm::vec4(0.1f, 0.2f, 0.3f, 0.4f), .depth = 1.0, .stencil = 0});
+    draw(r, states[0], batches[0], &shader);
+    clearAll({.state = scissored, .depth = 0.75, .stencil = 3});
+    draw(r, states[1], batches[1], &shader);
+    clearAll({.state = scissored, .color = glm::vec4(0.9f, 0.8f, 0.7f, 0.6f)});
+    draw(r, states[2], batches[2], &shader);
+  }
+  return fb;
+}
+
+}  // namespace
+
+TEST_CASE("renderer clears between deferred draws give the bytes of clearing and drawing one after another",
+          "[raster][clear][threads]") {
+  for (uint64_t seed : {3u, 4u}) {
+    const Framebuffer reference = clearsBetweenDraws(false, 1, seed);
+    for (int threads : {1, 2, 8}) {
+      INFO("seed " << seed << ", " << threads << " threads");
+      const Framebuffer banded = clearsBetweenDraws(true, threads, seed);
+      CHECK(sameBytes(reference.color(), banded.color()));
+      CHECK(sameBytes(reference.depthCodes(), banded.depthCodes()));
+      CHECK(sameBytes(reference.stencil(), banded.stencil()));
+    }
+    // Not vacuous: the draws changed the cleared buffers, and the scissored clears left their mark.
+    CHECK(reference.stencilAt(40, 20) == 3);
+    CHECK(reference.colorAt(40, 20) == glm::vec4(0.9f, 0.8f, 0.7f, 0.6f));
+    CHECK(reference.colorAt(5, 5) == glm::vec4(0.1f, 0.2f, 0.3f, 0.4f));
+    size_t drawn = 0;
+    for (int y = 100; y < 300; ++y)
+      for (int x = 0; x < 512; ++x) drawn += reference.colorAt(x, y) != reference.colorAt(5, 5) &&
+                                            reference.colorAt(x, y) != glm::vec4(0.9f, 0.8f, 0.7f, 0.6f);
+    CHECK(drawn > 10000);
+  }
+}
+
+TEST_CASE("a renderer clear with no draw after it is done when the framebuffer is asked for, or at the end",
+          "[raster][clear]") {
+  Framebuffer fb(64, 64);
+  const RenderState s = fullViewportState(fb);
+  {
+    Renderer r(fb);
+    r.clear({.state = s, .depth = 0.5});
+    CHECK(fb.hasDepth());  // made at once
+    CHECK(r.framebuffer().depthAt(10, 10) == 0.5);
+    r.clear({.state = s, .depth = 0.25, .stencil = 7});
+  }
+  CHECK(fb.depthAt(63, 63) == 0.25);
+  CHECK(fb.stencilAt(0, 0) == 7);
 }
