@@ -117,8 +117,7 @@ void clearRows(Framebuffer& fb, const ClearRequest& c, int y0, int y1) {
   if (c.accum) accumRows(fb, c.state, *c.accum, y0, y1);
 }
 
-void clear(Framebuffer& fb, const ClearRequest& c, const ParallelFor& parallel) {
-  prepareClear(fb, c);
+void fillClear(Framebuffer& fb, const ClearRequest& c, const ParallelFor& parallel) {
   const Rect r = clearRegion(fb, c.state);
   if (r.width == 0 || r.height == 0) return;
   const size_t pixels = size_t(r.width) * size_t(r.height);
@@ -129,6 +128,11 @@ void clear(Framebuffer& fb, const ClearRequest& c, const ParallelFor& parallel) 
   if (parts > 1 && parallel) parallel(parts, part);
   else
     for (int p = 0; p < parts; ++p) part(p);
+}
+
+void clear(Framebuffer& fb, const ClearRequest& c, const ParallelFor& parallel) {
+  prepareClear(fb, c);
+  fillClear(fb, c, parallel);
 }
 
 void clearColor(Framebuffer& fb, const RenderState& state, const glm::vec4& value, const ParallelFor& parallel) {

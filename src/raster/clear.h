@@ -34,8 +34,11 @@ struct ClearRequest {
 void prepareClear(Framebuffer& fb, const ClearRequest& request);
 // Fills rows [y0, y1) of the request's region in every buffer it clears (after prepareClear).
 void clearRows(Framebuffer& fb, const ClearRequest& request, int y0, int y1);
-// Both, with the rows cut into parts that `parallel` may fill at once (every pixel is written by
-// one part, so the bytes do not depend on the thread count).
+// Every row of the request's region (after prepareClear), cut into parts of rows that `parallel`
+// may fill at once (every pixel is written by one part, so the bytes do not depend on the thread
+// count).
+void fillClear(Framebuffer& fb, const ClearRequest& request, const ParallelFor& parallel = {});
+// prepareClear, then fillClear.
 void clear(Framebuffer& fb, const ClearRequest& request, const ParallelFor& parallel = {});
 
 void clearColor(Framebuffer& fb, const RenderState& state, const glm::vec4& value, const ParallelFor& parallel = {});

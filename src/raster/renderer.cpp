@@ -59,16 +59,8 @@ void Renderer::clear(const ClearRequest& request) {
 }
 
 void Renderer::clearsNow() {
-  for (const PendingClear& c : pendingClears_) {
-    // The buffers were made when the clear was asked for; filling is all that is left.
-    const Rect r = clearRegion(fb_, c.request.state);
-    if (r.width == 0 || r.height == 0) continue;
-    const int rows = r.height;
-    const int parts = std::clamp(int(int64_t(r.width) * rows / (int64_t(1) << 15)), 1, rows);
-    parallelFor(parts, [&](int p) {
-      clearRows(fb_, c.request, r.y + int(int64_t(rows) * p / parts), r.y + int(int64_t(rows) * (p + 1) / parts));
-    });
-  }
+  const ParallelFor parallel = [this](int count, const std::function<void(int)>& task) { parallelFor(count, task); };
+  for (const PendingClear& c : pendingClears_) fillClear(fb_, c.request, parallel);  // made by clear()
   pendingClears_.clear();
 }
 
@@ -521,8 +513,8 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
 // shrinking shares of the estimated work — maxBands + 1, maxBands, … 2 parts — and the last ones,
 // small, even out the threads' ends. A row's work is estimated as its pixels in the pending
 // triangles' bounding boxes and a quarter of its cleared pixels, plus a row's and a triangle's
-// fixed costs in pixels: the city's
-// shadow volumes crowd into the lower rows, and equal rows would leave one thread most of them.
+// fixed costs in pixels: the city's shadow volumes crowd into the lower rows, and equal rows would
+// leave one thread most of them.
 int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
   constexpr int64_t kRowCost = 8, kTriangleCost = 64;
   const size_t rows = size_t(maxY - minY + 1);

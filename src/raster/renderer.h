@@ -155,8 +155,7 @@ class Renderer {
     ClearRequest request;
     size_t beforeDraw = 0;
   };
-  std::vector<PendingClear> pendingClears_;
-  void clearsNow();                                      // the waiting clears, when no draw waits
+  void clearsNow();  // the waiting clears, when no draw waits
   void clearRowsBefore(size_t draw, size_t& next, int y0, int y1) const;
   int cacheBands() const;
   void clearPending();  // forgets every pending draw, its setups and what they point into
@@ -187,6 +186,7 @@ class Renderer {
   std::vector<SetupBounds> pendingBounds_;  // of each pending setup
   std::vector<SetupBlock> pendingBlocks_;  // the setups, as assembly made them
   std::vector<std::deque<ClipVertex>> pendingClipped_;
+  std::vector<PendingClear> pendingClears_;
   int splitIntoBands(int minY, int maxY, int maxBands);
   std::vector<int64_t> rowWork_, rowStart_;  // per row: the estimate splitIntoBands balances
   std::vector<int> bandFirstRow_;    // band b: rows [bandFirstRow_[b], bandFirstRow_[b + 1])
