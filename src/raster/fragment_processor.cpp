@@ -360,26 +360,14 @@ template <class Codes>
 inline Codes selectLanes(Codes pass, Codes a, Codes b) {
 #if defined(__AVX2__)
   if constexpr (sizeof(Codes) == sizeof(__m256i)) {
-    __m256i m, x, y;
-    std::memcpy(&m, &pass, sizeof m);
-    std::memcpy(&x, &a, sizeof x);
-    std::memcpy(&y, &b, sizeof y);
-    const __m256i r = _mm256_blendv_epi8(y, x, m);
-    Codes out;
-    std::memcpy(&out, &r, sizeof out);
-    return out;
+    using V = __m256i;
+    return std::bit_cast<Codes>(_mm256_blendv_epi8(std::bit_cast<V>(b), std::bit_cast<V>(a), std::bit_cast<V>(pass)));
   }
 #endif
 #if defined(__SSE4_1__)
   if constexpr (sizeof(Codes) == sizeof(__m128i)) {
-    __m128i m, x, y;
-    std::memcpy(&m, &pass, sizeof m);
-    std::memcpy(&x, &a, sizeof x);
-    std::memcpy(&y, &b, sizeof y);
-    const __m128i r = _mm_blendv_epi8(y, x, m);
-    Codes out;
-    std::memcpy(&out, &r, sizeof out);
-    return out;
+    using V = __m128i;
+    return std::bit_cast<Codes>(_mm_blendv_epi8(std::bit_cast<V>(b), std::bit_cast<V>(a), std::bit_cast<V>(pass)));
   }
 #endif
   return (a & pass) | (b & ~pass);

@@ -150,6 +150,21 @@ TEST_CASE("front-cap property: redrawing a triangle in another rotation fails LE
 
 namespace {
 
+// Random depth and stencil tests, functions and operations.
+void randomTests(TestRandom& rng, RenderState& s) {
+  s.depthTest = rng.below(4) != 0;
+  s.depthFunc = CompareFunc(rng.below(8));
+  s.depthWrite = rng.below(3) != 0;
+  s.stencilTest = rng.below(2) != 0;
+  for (StencilFaceState& f : s.stencil) {
+    f.func = CompareFunc(rng.below(8));
+    f.ref = rng.below(256);
+    f.sfail = StencilOp(rng.below(8));
+    f.dpfail = StencilOp(rng.below(8));
+    f.dppass = StencilOp(rng.below(8));
+  }
+}
+
 // A frame of random draws: random triangles (some crossing the near plane), colours, and state.
 void renderRandomFrame(Framebuffer& fb, uint64_t seed) {
   TestRandom rng(seed);
@@ -161,17 +176,7 @@ void renderRandomFrame(Framebuffer& fb, uint64_t seed) {
   const glm::dmat4 p = perspective(70.0, 1.25, 0.5, 50.0);
   const ColorVaryingShader shader;
   for (int d = 0; d < 40; ++d) {
-    s.depthTest = rng.below(4) != 0;
-    s.depthFunc = CompareFunc(rng.below(8));
-    s.depthWrite = rng.below(3) != 0;
-    s.stencilTest = rng.below(2) != 0;
-    for (StencilFaceState& f : s.stencil) {
-      f.func = CompareFunc(rng.below(8));
-      f.ref = rng.below(256);
-      f.sfail = StencilOp(rng.below(8));
-      f.dpfail = StencilOp(rng.below(8));
-      f.dppass = StencilOp(rng.below(8));
-    }
+    randomTests(rng, s);
     s.cull = CullMode(rng.below(3));
     s.blend = {rng.below(2) != 0, BlendFactor(rng.below(10)), BlendFactor(rng.below(10))};
     s.polygonOffset = {rng.below(4) == 0, rng.uniform(-2, 2), rng.uniform(-4, 4)};
@@ -300,17 +305,7 @@ namespace {
 
 // Ten random triangles over the whole frame with colour varyings, in a random state.
 std::vector<ClipVertex> randomBatch(TestRandom& rng, const Viewport& vp, RenderState& s) {
-  s.depthTest = rng.below(4) != 0;
-  s.depthFunc = CompareFunc(rng.below(8));
-  s.depthWrite = rng.below(3) != 0;
-  s.stencilTest = rng.below(2) != 0;
-  for (StencilFaceState& f : s.stencil) {
-    f.func = CompareFunc(rng.below(8));
-    f.ref = rng.below(256);
-    f.sfail = StencilOp(rng.below(8));
-    f.dpfail = StencilOp(rng.below(8));
-    f.dppass = StencilOp(rng.below(8));
-  }
+  randomTests(rng, s);
   std::vector<ClipVertex> v;
   for (int t = 0; t < 10; ++t)
     for (int k = 0; k < 3; ++k) {
