@@ -43,10 +43,11 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
   state.depthFunc = CompareFunc::Less;
   state.cull = CullMode::Back;
   PassClock clock(result);
-  clock.run("clear", [&] {
+  clock.run("lit", [&] {
+    // The clear is filled band by band with the lit draws (Renderer::clear): one pass, one time.
     renderer.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
+    drawLit(renderer, state, scene, view, prepared, scene.lights, true);
   });
-  clock.run("lit", [&] { drawLit(renderer, state, scene, view, prepared, scene.lights, true); });
   if (options.onPass) options.onPass("01-lit", renderer.framebuffer());
 }
 
