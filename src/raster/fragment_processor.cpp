@@ -268,13 +268,7 @@ struct RowDepth {
     const v4u a = codes4(cx), b = codes4(cx + 4.0);
 #if defined(__AVX__)
     // One insert; the generic shuffle below adds a register move per half.
-    __m128i low, high;
-    std::memcpy(&low, &a, sizeof low);
-    std::memcpy(&high, &b, sizeof high);
-    const __m256i both = _mm256_setr_m128i(low, high);
-    v8u out;
-    std::memcpy(&out, &both, sizeof out);
-    return out;
+    return std::bit_cast<v8u>(_mm256_setr_m128i(std::bit_cast<__m128i>(a), std::bit_cast<__m128i>(b)));
 #else
     return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
 #endif
