@@ -131,10 +131,7 @@ void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const 
   clipPolygon(ws.polygon, planes, varyingCount, ws.clipOut, ws.clipScratch);
   if (ws.clipOut.size() < 3) return;
   ws.windowPolygon.clear();
-  for (const ClipVertex& v : ws.clipOut) {
-    ws.clippedVertices.push_back(v);
-    ws.windowPolygon.push_back(toWindow(ws.clippedVertices.back(), state.viewport));
-  }
+  for (const ClipVertex& v : ws.clipOut) ws.windowPolygon.push_back(toWindow(ws.clippedVertices.push(v), state.viewport));
   // Facing of the polygon as a whole (GL 2.1 §2.14.1: the area of the clipped polygon).
   int64_t area2 = 0;
   for (size_t i = 1; i + 1 < ws.windowPolygon.size(); ++i)
@@ -158,8 +155,7 @@ void Renderer::startWorkspace(AssemblyWorkspace& ws, size_t triangles) {
   ws.setups.clear();
   ws.setups.reserve(triangles);  // the last draw's block was moved out: one allocation, not a doubling series
   ws.bounds.clear();
-  ws.clippedVertices.clear();
-  ws.stats = {};
+  ws.stats = {};  // clippedVertices stay: the draws assembled before still wait
 }
 
 void Renderer::appendTriangles(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes,
@@ -298,16 +294,13 @@ bool Renderer::collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDra
 }
 
 // The workspace's setups move as a block (no copy: 27k pumpkin triangles are 8 MB a pass) — the
-// pending list points into it — with the vertices clipping made; its counters are added up.
+// pending list points into it; its counters are added up. The vertices clipping made stay in the
+// workspace until the flush.
 void Renderer::keepBlock(AssemblyWorkspace& ws) {
   pendingBlocks_.push_back(std::move(ws.setups));
   ws.setups = {};
   stats_.trianglesClipped += ws.stats.trianglesClipped;
   stats_.trianglesCulled += ws.stats.trianglesCulled;
-  if (!ws.clippedVertices.empty()) {
-    pendingClipped_.push_back(std::move(ws.clippedVertices));
-    ws.clippedVertices = {};
-  }
 }
 
 // `pending`'s setups are the `count` from pendingSetups_[pending.first]: fills in its count and rows;
@@ -424,11 +417,11 @@ constexpr int kMinBandRows = 16;
 // Below this many candidate pixels a draw is not worth waking the other threads for.
 constexpr int64_t kParallelThreshold = 2048;
 
-template <class Bounds>
-int64_t candidatePixels(const std::vector<Bounds>& bounds, size_t first, size_t count, const Rect& r) {
+template <class BoundsList>
+int64_t candidatePixels(const BoundsList& bounds, size_t first, size_t count, const Rect& r) {
   int64_t sum = 0;
   for (size_t i = first; i < first + count; ++i) {
-    const Bounds& t = bounds[i];
+    const auto& t = bounds[i];
     const int64_t w = std::min(t.maxX, r.x + r.width - 1) - std::max(t.minX, r.x) + 1;
     const int64_t h = std::min(t.maxY, r.y + r.height - 1) - std::max(t.minY, r.y) + 1;
     if (w > 0 && h > 0) sum += w * h;
@@ -606,7 +599,8 @@ void Renderer::clearPending() {
   pendingSetups_.clear();
   pendingBounds_.clear();
   pendingBlocks_.clear();
-  pendingClipped_.clear();
+  for (AssemblyWorkspace& ws : assembly_) ws.clippedVertices.clear();
+  for (AssemblyWorkspace& ws : queuedWs_) ws.clippedVertices.clear();
 }
 
 }  // namespace shadowref

@@ -3,13 +3,13 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <span>
 #include <vector>
 
 #include "raster/clear.h"
+#include "raster/clipped_vertex_store.h"
 #include "raster/clipper.h"
 #include "raster/fragment_processor.h"
 #include "raster/fragment_shader.h"
@@ -98,15 +98,15 @@ class Renderer {
     int minX, minY, maxX, maxY;
   };
   // What one thread of triangle assembly works in: its share of the triangles' setups and their
-  // bounds, the vertices clipping made (kept at stable addresses for WindowVertex::source),
-  // scratch, counters, and the corners of the draw it assembles (nullptr: work per corner).
+  // bounds, the vertices clipping made (kept until the flush has rasterized them), scratch,
+  // counters, and the corners of the draw it assembles (nullptr: work per corner).
   // Cache lines of its own: its thread writes its vectors' ends and counters per triangle.
   struct alignas(128) AssemblyWorkspace {
     const VertexCorners* corners = nullptr;
     VertexCorners ownCorners;  // a queued draw's (assembleQueued)
     SetupBlock setups;
     std::vector<SetupBounds> bounds;  // of each setup
-    std::deque<ClipVertex> clippedVertices;
+    ClippedVertexStore clippedVertices;  // of every draw this workspace assembled since the last flush
     std::vector<ClipVertex> polygon, clipScratch, clipOut;
     std::vector<WindowVertex> windowPolygon;
     RasterStats stats;
@@ -178,14 +178,13 @@ class Renderer {
   // triangles.
   std::vector<AssemblyWorkspace> assembly_;
   VertexCorners corners_;
-  // Draws waiting for rasterization, their setups in submission order, and the vertices clipping
-  // made for them (WindowVertex::source points there; a deque keeps its elements in place when
-  // it is moved).
+  // Draws waiting for rasterization and their setups in submission order.
   std::vector<PendingDraw> pending_;
-  std::vector<const TriangleSetup*> pendingSetups_;
-  std::vector<SetupBounds> pendingBounds_;  // of each pending setup
+  // (Filled on the threads after a resize: ConstructLaterAllocator spares the calling thread the
+  // zeroing.)
+  std::vector<const TriangleSetup*, ConstructLaterAllocator<const TriangleSetup*>> pendingSetups_;
+  std::vector<SetupBounds, ConstructLaterAllocator<SetupBounds>> pendingBounds_;  // of each pending setup
   std::vector<SetupBlock> pendingBlocks_;  // the setups, as assembly made them
-  std::vector<std::deque<ClipVertex>> pendingClipped_;
   std::vector<PendingClear> pendingClears_;
   int splitIntoBands(int minY, int maxY, int maxBands);
   std::vector<int64_t> rowWork_, rowStart_;  // per row: the estimate splitIntoBands balances
