@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "raster/color_columns.h"
 #include "raster/lighting_pow.h"
 
 namespace shadowref {
@@ -242,15 +243,14 @@ void PerPixelLightingShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* 
       g += lg;
       b += lb;
     }
-    for (int lane = 0; lane < 4 && 4 * q + lane < batch.count; ++lane) out[4 * q + lane] = {r[lane], g[lane], b[lane], 1.0};
+    storeColorLanes(r, g, b, ColorLanes{1.0, 1.0, 1.0, 1.0}, std::min(4, batch.count - 4 * q), out + 4 * q);
   }
 }
 
 // shade() for every fragment: the interpolated colour columns, copied.
 void GouraudShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const {
-  const double *r = batch.varyings[kVaryingColor], *g = batch.varyings[kVaryingColor + 1],
-               *b = batch.varyings[kVaryingColor + 2];
-  for (int k = 0; k < batch.count; ++k) out[k] = {r[k], g[k], b[k], 1.0};
+  storeColorColumns(batch.varyings[kVaryingColor], batch.varyings[kVaryingColor + 1], batch.varyings[kVaryingColor + 2],
+                    1.0, batch.count, out);
 }
 
 glm::dvec3 gouraudVertexColor(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n) {

@@ -8,6 +8,7 @@
 
 #include "raster/accumulation.h"
 #include "raster/clear.h"
+#include "raster/color_columns.h"
 #include "raster/lighting.h"
 #include "shadow/draw_tag.h"
 #include "shadow/light_shadow.h"
@@ -88,17 +89,21 @@ class ShadowMappedGouraudShader final : public FragmentShader {
 
   int varyingCount() const override { return kFirstColor + 3 * int(shadows_.size()); }
 
+  // shade()'s sum in columns, one channel at a time over the batch (the loops vectorise): the
+  // same operations per fragment, in the same order.
   void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override {
-    glm::dvec3 c[kMaxBatch];
+    double c[3][kMaxBatch];
     double factor[kMaxBatch];
-    for (int k = 0; k < batch.count; ++k) c[k] = glm::dvec3(0.0);
+    for (double* channel : c) std::fill_n(channel, batch.count, 0.0);
     for (size_t i = 0; i < shadows_.size(); ++i) {
       shadows_[i]->factors(batch.varyings[kVaryingPosition], batch.varyings[kVaryingPosition + 1],
                            batch.varyings[kVaryingPosition + 2], batch.count, factor);
-      const double* const* colour = batch.varyings + kFirstColor + 3 * i;
-      for (int k = 0; k < batch.count; ++k) c[k] += glm::dvec3(colour[0][k], colour[1][k], colour[2][k]) * factor[k];
+      for (int j = 0; j < 3; ++j) {
+        const double* colour = batch.varyings[size_t(kFirstColor) + 3 * i + size_t(j)];
+        for (int k = 0; k < batch.count; ++k) c[j][k] += colour[k] * factor[k];
+      }
     }
-    for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(c[k], 1.0);
+    storeColorColumns(c[0], c[1], c[2], 1.0, batch.count, out);
   }
 
   glm::dvec4 shade(const FragmentInput& in) const override {
