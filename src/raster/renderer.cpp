@@ -55,7 +55,7 @@ Renderer::~Renderer() {
 
 void Renderer::clear(const ClearRequest& request) {
   prepareClear(fb_, request);
-  pendingClears_.push_back({request, pending_.size()});
+  pendingClears_.push_back({request, clearRegion(fb_, request.state), pending_.size()});
 }
 
 void Renderer::clearsNow() {
@@ -484,7 +484,7 @@ int Renderer::cacheBands() const {
   constexpr int64_t kBandBytes = int64_t(1) << 19;
   int64_t bytes = 0;
   for (const PendingClear& c : pendingClears_) {
-    const Rect r = clearRegion(fb_, c.request.state);
+    const Rect& r = c.region;
     const int64_t perPixel = (c.request.color ? int64_t(sizeof(glm::vec4)) : 0) + (c.request.depth ? 4 : 0) +
                              (c.request.stencil ? 1 : 0) + (c.request.accum ? int64_t(sizeof(glm::vec4)) : 0);
     bytes += int64_t(r.width) * int64_t(r.height) * perPixel;
@@ -526,7 +526,7 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
     }
   }
   for (const PendingClear& c : pendingClears_) {  // a cleared row costs about a quarter of a drawn one
-    const Rect r = clearRegion(fb_, c.request.state);
+    const Rect& r = c.region;
     if (r.width == 0 || r.height == 0) continue;
     rowWork_[size_t(r.y - minY)] += r.width / 4 + kRowCost;
     rowWork_[size_t(r.y + r.height - minY)] -= r.width / 4 + kRowCost;
@@ -569,7 +569,7 @@ void Renderer::flush() {
     return;
   }
   for (const PendingClear& c : pendingClears_) {  // the bands cover the cleared rows too
-    const Rect r = clearRegion(fb_, c.request.state);
+    const Rect& r = c.region;
     if (r.width == 0 || r.height == 0) continue;
     minY = std::min(minY, r.y);
     maxY = std::max(maxY, r.y + r.height - 1);

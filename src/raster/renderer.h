@@ -153,6 +153,7 @@ class Renderer {
   // no more).
   struct PendingClear {
     ClearRequest request;
+    Rect region;  // clearRegion of the request: the rows the bands must cover
     size_t beforeDraw = 0;
   };
   void clearsNow();  // the waiting clears, when no draw waits

@@ -204,6 +204,18 @@ TEST_CASE("depthsInUnit is set only where every covered depth is above 0 and at 
   REQUIRE(setup({{0, 0, 0.25}, {60, 0, 0.5}, {0, 60, 0.75}}, t));
   CHECK_FALSE(t.depthsInUnit);
   s.polygonOffset.enabled = false;
+  // Where the span loops do not read it — depth clamp on, or a 24-bit buffer — it is not worked
+  // out: left false.
+  s.depthClamp = true;
+  REQUIRE(setup({{0, 0, 0.25}, {60, 0, 0.5}, {0, 60, 0.75}}, t));
+  CHECK_FALSE(t.depthsInUnit);
+  s.depthClamp = false;
+  {
+    const std::vector<ClipVertex> v = windowTriangles(s.viewport, {{0, 0, 0.25}, {60, 0, 0.5}, {0, 60, 0.75}});
+    REQUIRE(setupTriangle(toWindow(v[0], s.viewport), toWindow(v[1], s.viewport), toWindow(v[2], s.viewport),
+                          FrontFacing, s, DepthCodec{DepthFormat::Unorm24}, t));
+    CHECK_FALSE(t.depthsInUnit);
+  }
 
   // Random triangles whose depths come within 1e-15 .. 1e-3 of 0 and 1: wherever the flag is set,
   // every covered centre's depth is in (0, 1]. Some must be set, or the test shows nothing.
