@@ -31,6 +31,8 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <pthread.h>
+#include <sched.h>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -683,6 +685,45 @@ MachineShare probeMachine() {
   return {2.0 * t1 / t2, cpu1 / t1};
 }
 
+// Each core's speed for one busy thread, as a fraction of the fastest core's (0 where the thread
+// could not be pinned). The host need not give a virtual machine's cores equal shares: this
+// machine's two have run 1.5x apart for minutes at a time. Then two threads can gain at most
+// 1 + slower/faster over one thread on the faster core, and a 1-thread time depends on the core it
+// ran on.
+std::vector<double> coreSpeeds() {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<double> ms(cores, 0.0);
+  for (unsigned c = 0; c < cores; ++c) {
+    std::thread([&ms, c] {
+      cpu_set_t set;
+      CPU_ZERO(&set);
+      CPU_SET(c, &set);
+      if (pthread_setaffinity_np(pthread_self(), sizeof set, &set) != 0) return;
+      volatile double x = 0.0;
+      const auto start = std::chrono::steady_clock::now();
+      for (long i = 0; i < 100'000'000; ++i) x = x + 1e-9;
+      ms[c] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }).join();
+  }
+  double fastest = 0.0;
+  for (const double t : ms)
+    if (t > 0.0 && (fastest == 0.0 || t < fastest)) fastest = t;
+  std::vector<double> speeds;
+  for (const double t : ms) speeds.push_back(t > 0.0 ? fastest / t : 0.0);
+  return speeds;
+}
+
+void printCoreSpeeds(const char* when, std::ofstream& csv) {
+  const std::vector<double> speeds = coreSpeeds();
+  std::printf("cores%s: one busy thread pinned to each runs at", when);
+  for (size_t c = 0; c < speeds.size(); ++c) {
+    std::printf(" %.2f", speeds[c]);
+    csv << "probe,core" << c << (*when ? "-end" : "") << ",0,0,machine,1,1," << speeds[c]
+        << ",,,,\"speed of one thread pinned to this core / the fastest core's\"\n";
+  }
+  std::printf(" of the fastest core's speed\n");
+}
+
 int runDriver(const Settings& s) {
   std::printf("bench/vs-mesa: shadowref against Mesa through OSMesa\n");
   std::printf("machine: %u hardware threads, %s; load average %s\n", std::thread::hardware_concurrency(),
@@ -693,6 +734,7 @@ int runDriver(const Settings& s) {
               before.parallelism, before.cpuShare);
   std::ofstream csv = openCsv(s.csvPath);
   csv << "probe,before,0,0,machine,2,1," << before.parallelism << ",,," << before.cpuShare << ",\"parallelism; cpu share\"\n";
+  printCoreSpeeds("", csv);
   compareScenes(s, csv);
   const bool deterministic = checkDeterminism(comparedScenes(), csv);
   if (s.scaling) scaling(s, csv);
@@ -700,6 +742,7 @@ int runDriver(const Settings& s) {
   std::printf("\navailable at the end: parallelism %.2f of 2, CPU share %.2f; load average %s\n", after.parallelism,
               after.cpuShare, loadAverage().c_str());
   csv << "probe,after,0,0,machine,2,1," << after.parallelism << ",,," << after.cpuShare << ",\"parallelism; cpu share\"\n";
+  printCoreSpeeds(" at the end", csv);
   agreementTable("", &csv);
   std::printf("\nCSV: %s\n", s.csvPath.c_str());
   return deterministic ? 0 : 1;
