@@ -181,8 +181,8 @@ class Renderer {
   VertexCorners corners_;
   // Draws waiting for rasterization and their setups in submission order.
   std::vector<PendingDraw> pending_;
-  // (Filled on the threads after a resize: ConstructLaterAllocator spares the calling thread the
-  // zeroing.)
+  // assembleQueued resizes the two lists and fills them on the threads: ConstructLaterAllocator
+  // spares the calling thread zeroing them first.
   std::vector<const TriangleSetup*, ConstructLaterAllocator<const TriangleSetup*>> pendingSetups_;
   std::vector<SetupBounds, ConstructLaterAllocator<SetupBounds>> pendingBounds_;  // of each pending setup
   std::vector<SetupBlock> pendingBlocks_;  // the setups, as assembly made them
