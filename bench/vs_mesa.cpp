@@ -665,11 +665,13 @@ struct MachineShare {
   double cpuShare = 0.0;     // CPU time / wall time of the 1-thread spin, 1 at best
 };
 
+// The probes' unit of work: a dependent chain of additions, the same on every core.
+void spin() {
+  volatile double x = 0.0;
+  for (long i = 0; i < 100'000'000; ++i) x = x + 1e-9;
+}
+
 MachineShare probeMachine() {
-  auto spin = [] {
-    volatile double x = 0.0;
-    for (long i = 0; i < 100'000'000; ++i) x = x + 1e-9;
-  };
   auto wallOf = [&](int threads, double* cpu) {
     const double cpu0 = cpuMilliseconds();
     const auto start = std::chrono::steady_clock::now();
@@ -699,9 +701,8 @@ std::vector<double> coreSpeeds() {
       CPU_ZERO(&set);
       CPU_SET(c, &set);
       if (pthread_setaffinity_np(pthread_self(), sizeof set, &set) != 0) return;
-      volatile double x = 0.0;
       const auto start = std::chrono::steady_clock::now();
-      for (long i = 0; i < 100'000'000; ++i) x = x + 1e-9;
+      spin();
       ms[c] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }).join();
   }

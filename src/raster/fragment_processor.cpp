@@ -282,7 +282,7 @@ struct RowDepth {
 
 // The row kind of a triangle (TriangleSetup::depthsInUnit says where the clamp can go).
 RowKind rowKindOf(const TriangleSetup& t, const DepthCodec& codec, bool depthClamp) {
-  if (codec.format != DepthFormat::Float32 || depthClamp) return RowKind::Encoded;
+  if (!plainFloatDepths(codec, depthClamp)) return RowKind::Encoded;
   return t.depthsInUnit ? RowKind::UnitFloat : RowKind::PlainFloat;
 }
 

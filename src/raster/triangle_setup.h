@@ -66,6 +66,13 @@ struct TriangleSetup {
 // unconstructed (no zero-fill of a few hundred bytes that setupTriangle writes again).
 using SetupBlock = std::vector<TriangleSetup, ConstructLaterAllocator<TriangleSetup>>;
 
+// Whether the span loops compute a triangle's depths as plain floats, whose clamp to [0, 1]
+// depthsInUnit may leave out: a Float32 buffer without depth clamp (a Unorm24 code is rounded lane
+// by lane, a depth clamp clamps to the depth range). Set-up asks depthsInUnit only there.
+inline bool plainFloatDepths(const DepthCodec& codec, bool depthClamp) {
+  return codec.format == DepthFormat::Float32 && !depthClamp;
+}
+
 // Builds the setup of a window-space triangle with the given facing. Returns false when the
 // snapped triangle has no area. Vertex order is made counter-clockwise here.
 bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
