@@ -86,7 +86,7 @@ double measuredOffsetUnits(const Readback& with, const Readback& without) {
 
 }  // namespace
 
-TEST_CASE("polygon offset: the factor term matches Mesa; Mesa's units term is r = 2 / (2^24 - 1)",
+TEST_CASE("polygon offset: the factor term matches Mesa, Mesa's units term is r = 2 / (2^24 - 1)",
           "[conformance][depth][offset]") {
   // The slope term factor * max(|dz/dx|, |dz/dy|) (GL 1.1 §3.5.5).
   for (double factor : {1.0, -2.0, 4.0}) checkAgreement(runCase(polygonOffsetScenario(factor, 0.0, 1.0 / 4096)));
@@ -110,7 +110,7 @@ TEST_CASE("polygon offset: the factor term matches Mesa; Mesa's units term is r 
   checkAgreement(runCase(combined));
 }
 
-TEST_CASE("shadowref's 24-bit depth is the exact plane depth rounded; Mesa is within 2 codes of it",
+TEST_CASE("shadowref's 24-bit depth is the exact plane depth rounded, Mesa is within 2 codes of it",
           "[conformance][depth][precision]") {
   // One triangle over the whole framebuffer (one more beyond it), window depth
   // z(x, y) = 0.3 + x / 200 + y / 300 at pixel centres: every code is known exactly.

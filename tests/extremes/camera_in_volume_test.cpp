@@ -65,7 +65,7 @@ TEST_CASE("Camera exactly on a shadow-volume side (4x + y = 10): z-fail equals t
   CHECK(differing(zfail.stencilPerLight[0], zpass.stencilPerLight[0]) > 0);
 }
 
-TEST_CASE("Camera inside the shadow volume: z-fail is right; z-pass is one short on every off-edge pixel, so it "
+TEST_CASE("Camera inside the shadow volume: z-fail is right, z-pass is one short on every off-edge pixel, so it "
           "lights the shadow and shades the light", "[extremes]") {
   // (0.5, 2, 0.3) is under the box, inside the umbra (|x|, |z| < 2 at y = 2).
   const Scene scene = boxUnderLight({0.5, 2.0, 0.3}, {4.0, -2.0, 1.0});

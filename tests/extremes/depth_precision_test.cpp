@@ -51,7 +51,7 @@ TEST_CASE("unorm24, near 1: P_inf resolves (f - n) / f = 99 % of the depths a fa
   }
 }
 
-TEST_CASE("float32, near 1: where z_w >= 0.5 (d >= 2 n) float codes are evenly spaced and P_inf keeps 99 % of them; "
+TEST_CASE("float32, near 1: where z_w >= 0.5 (d >= 2 n) float codes are evenly spaced and P_inf keeps 99 % of them, "
           "nearer, the loss is below 1 %", "[extremes]") {
   for (const Interval& i : kIntervals) {
     const double ratio = codeRatio(i, DepthFormat::Float32);
@@ -124,7 +124,7 @@ TEST_CASE("Finite far plane 1e2 ... 1e9: the unshadowed box-on-ground shows the 
   }
 }
 
-TEST_CASE("P_inf (epsilon = 0) puts every point at infinity at depth exactly 1; the epsilon form at 1 - epsilon/2",
+TEST_CASE("P_inf (epsilon = 0) puts every point at infinity at depth exactly 1, the epsilon form at 1 - epsilon/2",
           "[extremes]") {
   // Clip z and w of a w = 0 eye-space point are both -z_e (000 §3.3), so z/w = 1 exactly in the
   // double-precision pipeline; a GPU needs the epsilon form because float rounding can push it past

@@ -51,7 +51,7 @@ TEST_CASE("A scaled scene gives the base scene's stencil: scaling by a power of 
   }
 }
 
-TEST_CASE("Beyond the oracle's counting precision (translated by 1e8; a 1e-4 scene 1e2 from the origin) the shadow "
+TEST_CASE("Beyond the oracle's counting precision (translated by 1e8, a 1e-4 scene 1e2 from the origin) the shadow "
           "test still equals the oracle's shadow rays on every off-edge surface pixel", "[extremes]") {
   // Here the oracle's projective crossing counts go wrong (counts of -1 for closed volumes at 1e8,
   // a missed front cap at 1e-4 / 1e2: docs/numerics.md), so only its shadow rays are a reference.

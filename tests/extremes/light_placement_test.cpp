@@ -49,7 +49,7 @@ bool crossesFootprint(const glm::dvec2& p, const glm::dvec2& q) {
 
 }  // namespace
 
-TEST_CASE("A light 1e-9 above the ground: the box's shadow runs almost parallel to the ground; the z-fail stencil "
+TEST_CASE("A light 1e-9 above the ground: the box's shadow runs almost parallel to the ground, the z-fail stencil "
           "equals the oracle's count off edges and the hand-computed shadow on the ground", "[extremes]") {
   // The sides extruded from the box's bottom edges descend at 1e-9 per 2 units: they lie below
   // the ground within far less than a depth code, tie with it, fail LESS and count as behind it —
@@ -122,7 +122,7 @@ TEST_CASE("A light exactly on the ground's top face is a documented limit: the s
 }
 
 TEST_CASE("A light inside a closed box: every face of the box is averted, the back cap alone encloses everything "
-          "outside; z-fail shades every surface pixel, z-pass lights the ground", "[extremes]") {
+          "outside, z-fail shades every surface pixel, z-pass lights the ground", "[extremes]") {
   const Scene scene = withPointLight({0.0, 0.5, 0.0});  // the centre of the unit box
   const FrameResult zfail = renderStencil(scene, ShadowMethod::ZFail);
   const FrameResult zpass = renderStencil(scene, ShadowMethod::ZPass);

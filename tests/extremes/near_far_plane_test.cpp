@@ -40,7 +40,7 @@ TEST_CASE("P_inf with near 1e-1 ... 1e-4: the z-fail stencil equals the oracle's
   }
 }
 
-TEST_CASE("P_inf with near 1e-5 and 1e-6: float32 depth runs out of codes; the z-fail stencil disagrees with the "
+TEST_CASE("P_inf with near 1e-5 and 1e-6: float32 depth runs out of codes, the z-fail stencil disagrees with the "
           "oracle on at most 1 % (1e-5) and 6.5 % (1e-6) of the off-edge pixels", "[extremes]") {
   // docs/numerics.md, "Near plane": the scene (d = 3 ... 12) spans 42 depth codes at near 1e-5
   // and 5 at 1e-6 (float32 and unorm24 alike: above z_w = 0.5 both are spaced 2^-24). Volume

@@ -63,7 +63,7 @@ OverflowCounts tally(std::span<const uint8_t> stencil, const oracle::OracleImage
 
 }  // namespace
 
-TEST_CASE("300 volumes, wrapping ops: the stencil is the count mod 256 (300 -> 44) on every off-edge pixel; the "
+TEST_CASE("300 volumes, wrapping ops: the stencil is the count mod 256 (300 -> 44) on every off-edge pixel, the "
           "shadow test fails exactly where the count is 256", "[extremes]") {
   const Scene scene = overflowScene();
   const oracle::OracleImage img = castFor(scene);

@@ -92,7 +92,7 @@ TEST_CASE("Huge triangles (corners at 1e25 in clip space) are clipped to the gua
   }
 }
 
-TEST_CASE("A vertex with w = 0 or |w| <= 1e-6 (a point at or near infinity) opens the triangle into a strip; "
+TEST_CASE("A vertex with w = 0 or |w| <= 1e-6 (a point at or near infinity) opens the triangle into a strip, "
           "it covers exactly the strip's pixels", "[extremes]") {
   // A = (-0.5, -0.5), B = (0.5, -0.5) in NDC and C = (0, 1, 0, w): with w = 0 the triangle is
   // the half-strip above AB towards +y; for w = ±1e-6 its sides lean by under 1e-4 pixel across the

@@ -252,7 +252,7 @@ TEST_CASE("every depth func compares the fragment depth against the stored depth
   }
 }
 
-TEST_CASE("a passing fragment writes its depth; a failing one leaves the stored depth", "[raster][depth]") {
+TEST_CASE("a passing fragment writes its depth, a failing one leaves the stored depth", "[raster][depth]") {
   std::vector<double> after;
   CHECK(depthFuncPattern(CompareFunc::Less, DepthFormat::Float32, 0.5, {0.25, 0.5, 0.75, 1.0}, &after) == "..##");
   CHECK(after == std::vector<double>{0.25, 0.5, 0.5, 0.5});

@@ -66,7 +66,7 @@ TEST_CASE("a vertex index out of range is an error with threads too, and nothing
   for (uint8_t v : fb.stencil()) REQUIRE(v == 0);
 }
 
-TEST_CASE("a thread keeps one pool per thread count for its renderers; another thread has its own",
+TEST_CASE("a thread keeps one pool per thread count for its renderers, another thread has its own",
           "[raster][threads]") {
   CHECK(threadPoolForThisThread(1) == nullptr);
   ThreadPool* two = threadPoolForThisThread(2);

@@ -181,7 +181,7 @@ TEST_CASE("city meshes are closed and every house stands on the ground", "[mesh]
   }
 }
 
-TEST_CASE("city is deterministic per seed; another seed or single model changes it", "[mesh]") {
+TEST_CASE("city is deterministic per seed, another seed or single model changes it", "[mesh]") {
   auto build = [](CityOptions o) {
     Scene s;
     addCity(s, o);

@@ -149,7 +149,7 @@ TEST_CASE("a shadow proxy replaces the mesh in the shadow pass only", "[loader]"
   CHECK(inst[0].shadowMesh->triangles.size() == 6 * 2 * (3 - 1));  // two polar fans + one band of quads
 }
 
-TEST_CASE("the file's keys change what the generator made; new names add", "[loader]") {
+TEST_CASE("the file's keys change what the generator made, new names add", "[loader]") {
   const Scene base = load("generator: room\n");
   const Scene s = load("generator: {type: room}\n"
                        "camera: {fov: 40}\n"

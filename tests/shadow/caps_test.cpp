@@ -58,7 +58,7 @@ TEST_CASE("caps: a directional light has a front cap but no back cap", "[volumes
   CHECK(v.positions.back() == glm::dvec4(0, -1, 0, 0));
 }
 
-TEST_CASE("caps: counts add up to the mesh; without caps neither is built", "[volumes][caps]") {
+TEST_CASE("caps: counts add up to the mesh, without caps neither is built", "[volumes][caps]") {
   std::mt19937_64 rng(5);
   for (const Mesh& mesh : testing::closedTestMeshes()) {
     const glm::dvec4 light = testing::randomLight(rng, false);

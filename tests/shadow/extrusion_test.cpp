@@ -27,7 +27,7 @@ TEST_CASE("extrusion: the side quad of edge A -> B is B, A, D, C with D = A∞, 
   CHECK(q[3] == glm::dvec4(0.75, -0.5, -4, 0));
 }
 
-TEST_CASE("extrusion: side triangles (B, A, D) and (B, D, C); one triangle when D = C (directional)",
+TEST_CASE("extrusion: side triangles (B, A, D) and (B, D, C), one triangle when D = C (directional)",
           "[volumes][extrusion]") {
   std::vector<glm::uvec3> out;
   appendSideTriangles({3, 7, 0}, InfiniteIndexing{10, false}, out);
