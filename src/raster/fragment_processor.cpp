@@ -203,13 +203,6 @@ using v4i = int32_t __attribute__((vector_size(16)));
 using v8i = int32_t __attribute__((vector_size(32)));
 
 // The low byte of each lane (one byte shuffle; a converting cast is lowered lane by lane).
-inline v4b lowBytes(v4u x) {
-  using v16b = uint8_t __attribute__((vector_size(16)));
-  v16b bytes;
-  std::memcpy(&bytes, &x, sizeof bytes);
-  constexpr int low = std::endian::native == std::endian::little ? 0 : 3;
-  return __builtin_shufflevector(bytes, bytes, low, 4 + low, 8 + low, 12 + low);
-}
 inline v8b lowBytes(v8u x) {
   using v32b = uint8_t __attribute__((vector_size(32)));
   v32b bytes;
@@ -217,10 +210,6 @@ inline v8b lowBytes(v8u x) {
   constexpr int low = std::endian::native == std::endian::little ? 0 : 3;
   return __builtin_shufflevector(bytes, bytes, low, 4 + low, 8 + low, 12 + low, 16 + low, 20 + low, 24 + low, 28 + low);
 }
-
-// The byte vector of as many lanes as a vector of codes: the stencil bytes of those pixels.
-template <class Codes>
-using BytesOf = std::conditional_t<sizeof(Codes) == sizeof(v8u), v8b, v4b>;
 
 // How a triangle's rows make depth codes, fixed at compile time so that the eight-pixel steps test
 // nothing: Encoded, through DepthCodec::encode lane by lane (Unorm24) or after depth clamping;
@@ -367,10 +356,23 @@ inline Codes selectLanes(Codes pass, Codes a, Codes b) {
   return (a & pass) | (b & ~pass);
 }
 
-// The rows of a triangle, depth tested eight pixels per step, then four, then one by one:
-// block(at, codes, stored, pass) for each eight or four pixels from buffer index `at` (vectors of
-// codes: v8u or v4u; pass a lane mask), single(at, code, pass) for the last one to three of a row.
-// Counts the fragments and the failed depth tests. F = Always (no depth test) reads no depth.
+// The lanes of a step of eight pixels starting at column `first` whose columns are in [lo, hi], as
+// a lane mask: the live lanes.
+inline v8u liveLanes(int first, int lo, int hi) {
+  const v8i column = first + v8i{0, 1, 2, 3, 4, 5, 6, 7};
+  return (v8u)((column >= lo) & (column <= hi));
+}
+
+// The rows of a triangle, depth tested eight pixels per step: block(at, codes, stored, live, pass)
+// for each eight pixels from buffer index `at` (v8u vectors of codes; `live` the lanes inside the
+// span and `pass` the live lanes that pass, lane masks). What is left of a span after its whole
+// steps of eight — a short span all of it — is one more step, over the eight pixels of the row
+// from the first one left, or the row's last eight where the row ends sooner: one step without
+// branches in place of up to seven single pixels. Its other lanes are dead; block may store them
+// back as they were read (they are pixels of the same row, which this thread owns). A framebuffer
+// narrower than eight pixels has no such window; its rows go pixel by pixel, single(at, code,
+// pass). Counts the fragments and the failed depth tests. F = Always (no depth test) reads no
+// depth.
 template <CompareFunc F, RowKind K, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
                    uint64_t& fragments, uint64_t& failed, const Block& block, const Single& single) {
@@ -378,46 +380,42 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   const int width = fb.width();
   uint64_t rowsFragments = 0, rowsPassed = 0;  // locals: the loops keep them in registers
   v8u passed8{};  // passed tests per lane, summed once per triangle rather than per row
-  v4u passed4{};
   rasterizeRowSpans(t, region, [&, depth, width](int y, int xl, int xr) {
-    const size_t at = size_t(y) * size_t(width) + size_t(xl);
+    const size_t rowStart = size_t(y) * size_t(width);
     const int n = xr - xl + 1;
     const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
     // Copies for the row: stores through the buffers may alias anything in memory, so values
     // read through the closures would be read again after every store.
-    const uint32_t* const stored = depth + at;
+    const uint32_t* const stored = depth + rowStart;
     const Block rowBlock = block;
     const Single rowSingle = single;
-    auto step = [&](auto codes, v4d cx, int i, auto& passed) {
-      using Codes = decltype(codes);
-      Codes before{};
-      if constexpr (F != CompareFunc::Always) std::memcpy(&before, stored + i, sizeof before);
-      if constexpr (sizeof(Codes) == sizeof(v8u)) codes = row.codes8(cx);
-      else codes = row.codes4(cx);
-      const Codes pass = codesPass<F>(codes, before);
-      passed -= pass;  // a passing lane is all ones: minus one
-      rowBlock(at + size_t(i), codes, before, pass);
-    };
-    int i = 0;
-    v4d cx = double(xl) + v4d{0.5, 1.5, 2.5, 3.5};  // exact: whole numbers + 0.5
     v8u rowPassed8{};  // in a register through the row; the triangle's sum is in memory
-    for (; i + 8 <= n; i += 8, cx += 8.0) step(v8u{}, cx, i, rowPassed8);
+    // whole: every lane live. Dead lanes are read even without a depth test: block stores them back.
+    auto step = [&](int x, v8u live, auto whole) {
+      v8u before{};
+      if constexpr (F != CompareFunc::Always || !decltype(whole)::value) std::memcpy(&before, stored + x, sizeof before);
+      const v8u codes = row.codes8(double(x) + v4d{0.5, 1.5, 2.5, 3.5});  // exact: whole numbers + 0.5
+      const v8u pass = codesPass<F>(codes, before) & live;
+      rowPassed8 -= pass;  // a passing lane is all ones: minus one
+      rowBlock(rowStart + size_t(x), codes, before, live, pass);
+    };
+    int x = xl;
+    for (; x + 8 <= xr + 1; x += 8) step(x, ~v8u{}, std::true_type{});
+    if (x <= xr && width >= 8) {
+      const int first = std::min(x, width - 8);
+      step(first, liveLanes(first, x, xr), std::false_type{});
+    } else {
+      for (; x <= xr; ++x) {
+        const uint32_t code = row.code(x);
+        const bool pass = passes<F>(code, F == CompareFunc::Always ? code : stored[x]);
+        rowsPassed += pass;
+        rowSingle(rowStart + size_t(x), code, pass);
+      }
+    }
     passed8 += rowPassed8;
-    if (i + 4 <= n) {
-      step(v4u{}, cx, i, passed4);
-      i += 4;
-    }
-    uint64_t rowPassed = 0;
-    for (; i < n; ++i) {
-      const uint32_t code = row.code(xl + i);
-      const bool pass = passes<F>(code, F == CompareFunc::Always ? code : stored[i]);
-      rowPassed += pass;
-      rowSingle(at + size_t(i), code, pass);
-    }
     rowsFragments += uint64_t(n);
-    rowsPassed += rowPassed;
   });
-  for (int lane = 0; lane < 4; ++lane) rowsPassed += uint64_t(passed4[lane]) + passed8[lane] + passed8[lane + 4];
+  for (int lane = 0; lane < 8; ++lane) rowsPassed += uint64_t(passed8[lane]);
   fragments += rowsFragments;
   failed += rowsFragments - rowsPassed;
 }
@@ -436,18 +434,15 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   uint64_t fragments = 0, failed = 0;
   // The deltas in every lane, made once: the stencil stores are byte stores, which may alias
   // anything, so a delta read from a byte would be read and broadcast again at every step.
-  const v8u passDelta8 = v8u{} + onPass, failDelta8 = v8u{} + onFail;
-  const v4u passDelta4 = v4u{} + onPass, failDelta4 = v4u{} + onFail;
+  const v8u passDelta = v8u{} + onPass, failDelta = v8u{} + onFail;
   withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, rowKindOf(t, fb_.depthCodec(), state_.depthClamp),
               [&](auto f, auto kind) {
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
-        [stencil, passDelta8, failDelta8, passDelta4, failDelta4](size_t at, auto, auto, auto pass) {
-          using Codes = decltype(pass);
-          BytesOf<Codes> bytes;
+        [stencil, passDelta, failDelta](size_t at, v8u, v8u, v8u live, v8u pass) {
+          v8b bytes;
           std::memcpy(&bytes, stencil + at, sizeof bytes);
-          if constexpr (sizeof(Codes) == sizeof(v8u)) bytes += lowBytes(selectLanes(pass, passDelta8, failDelta8));
-          else bytes += lowBytes(selectLanes(pass, passDelta4, failDelta4));
+          bytes += lowBytes(selectLanes(pass, passDelta, failDelta) & live);  // a dead lane adds 0
           std::memcpy(stencil + at, &bytes, sizeof bytes);
         },
         [stencil, onPass, onFail](size_t at, uint32_t, bool pass) {
@@ -467,9 +462,9 @@ void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region
   auto rows = [&](auto f, auto kind, auto write) {
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
-        [depth](size_t at, auto codes, auto stored, auto pass) {
+        [depth](size_t at, v8u codes, v8u stored, v8u, v8u pass) {
           if constexpr (decltype(write)::value) {
-            const decltype(codes) next = selectLanes(pass, codes, stored);
+            const v8u next = selectLanes(pass, codes, stored);
             std::memcpy(depth + at, &next, sizeof next);
           }
         },
@@ -495,13 +490,12 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
     constexpr bool kWrite = decltype(write)::value;
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
         t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
-        [depth, color, value](size_t at, auto codes, auto stored, auto pass) {
-          using Codes = decltype(codes);
+        [depth, color, value](size_t at, v8u codes, v8u stored, v8u, v8u pass) {
           if constexpr (kWrite) {
-            const Codes next = selectLanes(pass, codes, stored);
+            const v8u next = selectLanes(pass, codes, stored);
             std::memcpy(depth + at, &next, sizeof next);
           }
-          for (int lane = 0; lane < int(sizeof(Codes) / sizeof(uint32_t)); ++lane)
+          for (int lane = 0; lane < 8; ++lane)
             if (pass[lane]) color[at + size_t(lane)] = value;
         },
         [depth, color, value](size_t at, uint32_t code, bool pass) {

@@ -86,7 +86,10 @@ RenderState randomState(TestRandom& r, const Framebuffer& fb, int shape) {
 std::vector<ClipVertex> randomTriangles(TestRandom& r, const Viewport& vp, int count) {
   std::vector<ClipVertex> out;
   for (int i = 0; i < count; ++i) {
-    const double cx = r.uniform(-10.0, 74.0), cy = r.uniform(-10.0, 74.0), size = r.uniform(1.0, 60.0);
+    // Centres up to 10 pixels outside the viewport, sizes up to its larger side and down to one
+    // pixel: rows from one pixel to the whole width, at both ends of the rows.
+    const double right = vp.width + 10.0, top = vp.height + 10.0, most = std::max(vp.width, vp.height);
+    const double cx = r.uniform(-10.0, right), cy = r.uniform(-10.0, top), size = r.uniform(1.0, most);
     for (int k = 0; k < 3; ++k) {
       ClipVertex v = windowVertex(vp, cx + r.uniform(-size, size), cy + r.uniform(-size, size), r.uniform(-0.2, 1.2));
       const double w = r.uniform(0.5, 3.0);  // perspective: varyings and depth vary non-linearly
@@ -98,10 +101,10 @@ std::vector<ClipVertex> randomTriangles(TestRandom& r, const Viewport& vp, int c
   return out;
 }
 
-Drawn drawWith(bool reference, DepthFormat format, const std::vector<RenderState>& states,
+Drawn drawWith(bool reference, int width, int height, DepthFormat format, const std::vector<RenderState>& states,
                const std::vector<std::vector<ClipVertex>>& batches, int threads) {
   Renderer::useReferencePath(reference);
-  Drawn d{Framebuffer(64, 64, format), {}};
+  Drawn d{Framebuffer(width, height, format), {}};
   Renderer renderer(d.fb, threads);
   Renderer::useReferencePath(false);
   const ColorVaryingShader varying;
@@ -124,18 +127,21 @@ bool sameColor(const Framebuffer& a, const Framebuffer& b) {
 TEST_CASE("span loops leave the same bytes as the one-fragment path, in random states", "[raster][spans]") {
   const int shape = GENERATE(0, 1, 2, 3, 4);
   const DepthFormat format = GENERATE(DepthFormat::Float32, DepthFormat::Unorm24);
+  // 64 wide: rows' last pixels in one step of eight; 8 and 9 wide: that step at the row's end
+  // reaching back over pixels already done; 5 wide: rows shorter than any step, pixel by pixel.
+  const auto [width, height] = GENERATE(std::pair{64, 64}, std::pair{9, 40}, std::pair{8, 24}, std::pair{5, 40});
   for (uint64_t seed = 1; seed <= 12; ++seed) {
-    INFO("shape " << shape << ", seed " << seed);
+    INFO("shape " << shape << ", " << width << "x" << height << ", seed " << seed);
     TestRandom r(seed * 7919 + uint64_t(shape));
-    Framebuffer probe(64, 64, format);
+    Framebuffer probe(width, height, format);
     std::vector<RenderState> states;
     std::vector<std::vector<ClipVertex>> batches;
     for (int draw = 0; draw < 12; ++draw) {
       states.push_back(randomState(r, probe, draw == 0 ? 2 : shape));
       batches.push_back(randomTriangles(r, states.back().viewport, 6));
     }
-    const Drawn reference = drawWith(true, format, states, batches, 1);
-    const Drawn spans = drawWith(false, format, states, batches, 1);
+    const Drawn reference = drawWith(true, width, height, format, states, batches, 1);
+    const Drawn spans = drawWith(false, width, height, format, states, batches, 1);
     REQUIRE(reference.stats.fragments > 0);
     CHECK(reference.fb.stencil() == spans.fb.stencil());
     CHECK(reference.fb.depthCodes() == spans.fb.depthCodes());
