@@ -145,26 +145,33 @@ TEST_CASE("factors of a batch of points are factor's bits, point by point", "[sh
   ShadowLookup lookup;
   lookup.textureMatrix = textureMatrix(spotLightView(spot, box({-2.0, 0.0, -2.0}, {2.0, 1.0, 2.0})));
   lookup.sampler.texture = &map;
-  constexpr int kCount = 61;  // not a multiple of four: the scalar tail too
-  double x[kCount], y[kCount], z[kCount], out[kCount];
-  for (int k = 0; k < kCount; ++k) {
+  constexpr int kMost = 64;  // a whole fragment batch
+  double x[kMost], y[kMost], z[kMost], out[kMost];
+  for (int k = 0; k < kMost; ++k) {
     x[k] = 8.0 * next() - 4.0;
     y[k] = 6.0 * next() - 1.0;  // some above the light: q <= 0
     z[k] = 8.0 * next() - 4.0;
   }
-  for (double bias : {0.0, 0.003}) {
-    for (int f = 0; f < 8; ++f) {
-      lookup.constantBias = bias;
-      lookup.sampler.func = CompareFunc(f);
-      lookup.factors(x, y, z, kCount, out);
-      int lit = 0, shadowed = 0;
-      for (int k = 0; k < kCount; ++k) {
-        const double expected = lookup.factor({x[k], y[k], z[k]});
-        CHECK(std::bit_cast<uint64_t>(out[k]) == std::bit_cast<uint64_t>(expected));
-        lit += expected == 1.0;
-        shadowed += expected == 0.4;
+  // Counts that are not multiples of four: the last points padded to a step of four.
+  for (int count : {0, 1, 2, 3, 5, 6, 7, 61, 64}) {
+    INFO(count << " points");
+    for (double bias : {0.0, 0.003}) {
+      for (int f = 0; f < 8; ++f) {
+        lookup.constantBias = bias;
+        lookup.sampler.func = CompareFunc(f);
+        std::fill_n(out, kMost, -1.0);
+        lookup.factors(x + kMost - count, y + kMost - count, z + kMost - count, count, out);
+        int lit = 0, shadowed = 0;
+        for (int k = 0; k < count; ++k) {
+          const int i = kMost - count + k;
+          const double expected = lookup.factor({x[i], y[i], z[i]});
+          CHECK(std::bit_cast<uint64_t>(out[k]) == std::bit_cast<uint64_t>(expected));
+          lit += expected == 1.0;
+          shadowed += expected == 0.4;
+        }
+        for (int k = count; k < kMost; ++k) CHECK(out[k] == -1.0);  // nothing written past the batch
+        if (count == kMost && lookup.sampler.func == CompareFunc::LEqual) CHECK((lit > 5 && shadowed > 5));
       }
-      if (lookup.sampler.func == CompareFunc::LEqual) CHECK((lit > 5 && shadowed > 5));  // both outcomes occur
     }
   }
 }
