@@ -251,9 +251,25 @@ struct RowDepth {
     }
     return out;
   }
-  // Eight pixels from the centre cx[0]: two halves of four (vectors of eight doubles are
-  // lowered lane by lane by GCC 12 for AVX2).
-  v8u codes8(v4d cx) const {
+  // The codes of the eight pixels from column x. With AVX-512 a float buffer's eight depths are
+  // one vector of eight doubles; otherwise two halves of four (GCC 12 lowers a vector of eight
+  // doubles lane by lane for AVX2).
+  v8u codes8(int x) const {
+#if defined(__AVX512F__)
+    if constexpr (kPlainFloat) {
+      using v8d = double __attribute__((vector_size(64)));
+      const v8d cx = double(x) + v8d{0.5, 1.5, 2.5, 3.5, 4.5, 5.5, 6.5, 7.5};  // exact
+      using v8dm = int64_t __attribute__((vector_size(64)));
+      v8d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
+      // encode's clamp, as clampUnitOrZero: NaN and -0.0 become +0.0.
+      if constexpr (K == RowKind::PlainFloat) {
+        const v8dm positive = z > 0.0, above = 1.0 < z;
+        z = positive ? (above ? v8d{} + 1.0 : z) : v8d{};
+      }
+      return std::bit_cast<v8u>(__builtin_convertvector(z, v8f));
+    }
+#endif
+    const v4d cx = double(x) + v4d{0.5, 1.5, 2.5, 3.5};  // exact: whole numbers + 0.5
     const v4u a = codes4(cx), b = codes4(cx + 4.0);
 #if defined(__AVX__)
     // One insert; the generic shuffle below adds a register move per half.
@@ -394,7 +410,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     auto step = [&](int x, v8u live, auto whole) {
       v8u before{};
       if constexpr (F != CompareFunc::Always || !decltype(whole)::value) std::memcpy(&before, stored + x, sizeof before);
-      const v8u codes = row.codes8(double(x) + v4d{0.5, 1.5, 2.5, 3.5});  // exact: whole numbers + 0.5
+      const v8u codes = row.codes8(x);
       const v8u pass = codesPass<F>(codes, before) & live;
       rowPassed8 -= pass;  // a passing lane is all ones: minus one
       rowBlock(rowStart + size_t(x), codes, before, live, pass);
