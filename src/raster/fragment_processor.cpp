@@ -318,17 +318,29 @@ void withRowKind(CompareFunc func, RowKind kind, bool write, Fn&& fn) {
 
 }  // namespace
 
-// The depth codes of n pixels of a row (RowDepth).
+// The depth codes of n pixels of a row (RowDepth, of the triangle's row kind as the other span
+// loops make them): eight at a time, then four, then one by one.
 void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const {
-  const RowDepth<RowKind::Encoded> row(t, y, fb_.depthCodec(), state_.depthClamp, depthLo_, depthHi_);
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    const v4u four = row.codes4(x + i);
-    std::memcpy(codes + i, &four, sizeof four);
+  auto fill = [&](auto kind) {
+    const RowDepth<decltype(kind)::value> row(t, y, fb_.depthCodec(), state_.depthClamp, depthLo_, depthHi_);
+    int i = 0;
+    for (; i + 8 <= n; i += 8) {
+      const v8u eight = row.codes8(x + i);
+      std::memcpy(codes + i, &eight, sizeof eight);
+    }
+    if (i + 4 <= n) {
+      const v4u four = row.codes4(x + i);
+      std::memcpy(codes + i, &four, sizeof four);
+      i += 4;
+    }
+    for (; i < n; ++i) codes[i] = row.code(x + i);
+  };
+  switch (rowKindOf(t, fb_.depthCodec(), state_.depthClamp)) {
+    case RowKind::Encoded: return fill(std::integral_constant<RowKind, RowKind::Encoded>{});
+    case RowKind::PlainFloat: return fill(std::integral_constant<RowKind, RowKind::PlainFloat>{});
+    case RowKind::UnitFloat: return fill(std::integral_constant<RowKind, RowKind::UnitFloat>{});
   }
-  for (; i < n; ++i) codes[i] = row.code(x + i);
 }
-
 
 void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& region) {
   const bool watched = watch_ && watch_->observer && watch_->x >= t.minX && watch_->x <= t.maxX &&
