@@ -3,12 +3,14 @@
 // only for fragments that survive the stencil and depth tests and only when colour is written at
 // all, so stencil-only passes (shadow volumes) never shade.
 //
-// Triangles are processed in one of three ways chosen once per draw from the state. Stencil
+// Triangles are processed in one of four ways chosen once per draw from the state. Stencil
 // counting (volume passes: no colour, no depth write, stencil ALWAYS with KEEP / INCR_WRAP /
-// DECR_WRAP) and depth only (shadow maps) walk each triangle's rows straight to the buffers, four
-// pixels per step. Everything else goes row span by row span in chunks: the depth codes of the
-// chunk first, then the tests, then the surviving fragments shaded together. Each pixel is touched
-// once per triangle, so the order inside a row changes no byte. The watched pixel (pixel history)
+// DECR_WRAP), depth only (shadow maps) and one constant colour (the ambient pass) walk each
+// triangle's rows straight to the buffers, eight pixels per step; a row's last pixels are one more
+// step of eight whose lanes outside the span store back what they read. Everything else goes row
+// span by row span in chunks: the depth codes of the chunk first, then the tests, then the
+// surviving fragments shaded together. Each pixel is changed at most once per triangle, so the
+// order inside a row changes no byte. The watched pixel (pixel history)
 // always takes the one-fragment path, which records every step; the rest of its triangle takes
 // the chunked path.
 #pragma once
