@@ -400,15 +400,16 @@ inline v8u liveLanes(int first, int lo, int hi) {
 // back as they were read (they are pixels of the same row, which this thread owns). A framebuffer
 // narrower than eight pixels has no such window; its rows go pixel by pixel, single(at, code,
 // pass). Counts the fragments and the failed depth tests. F = Always (no depth test) reads no
-// depth.
+// depth but the dead lanes', and none without a depth buffer (where block writes no depth).
 template <CompareFunc F, RowKind K, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
                    uint64_t& fragments, uint64_t& failed, const Block& block, const Single& single) {
   const uint32_t* const depth = fb.depthCodes().data();
+  const bool hasDepth = fb.hasDepth();
   const int width = fb.width();
   uint64_t rowsFragments = 0, rowsPassed = 0;  // locals: the loops keep them in registers
   v8u passed8{};  // passed tests per lane, summed once per triangle rather than per row
-  rasterizeRowSpans(t, region, [&, depth, width](int y, int xl, int xr) {
+  rasterizeRowSpans(t, region, [&, depth, hasDepth, width](int y, int xl, int xr) {
     const size_t rowStart = size_t(y) * size_t(width);
     const int n = xr - xl + 1;
     const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
@@ -418,10 +419,12 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     const Block rowBlock = block;
     const Single rowSingle = single;
     v8u rowPassed8{};  // in a register through the row; the triangle's sum is in memory
-    // whole: every lane live. Dead lanes are read even without a depth test: block stores them back.
+    // whole: every lane live. Without a depth test a step with dead lanes still reads the depths
+    // (block may store them back), where the framebuffer has a depth buffer at all.
     auto step = [&](int x, v8u live, auto whole) {
       v8u before{};
-      if constexpr (F != CompareFunc::Always || !decltype(whole)::value) std::memcpy(&before, stored + x, sizeof before);
+      if constexpr (F != CompareFunc::Always) std::memcpy(&before, stored + x, sizeof before);
+      else if (!decltype(whole)::value && hasDepth) std::memcpy(&before, stored + x, sizeof before);
       const v8u codes = row.codes8(x);
       const v8u pass = codesPass<F>(codes, before) & live;
       rowPassed8 -= pass;  // a passing lane is all ones: minus one
