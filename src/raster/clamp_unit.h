@@ -2,6 +2,7 @@
 // clamp of blending and of every colour write, and the depth encoder's.
 #pragma once
 
+#include <cstdint>
 #include <cstring>
 
 #if defined(__SSE2__)
@@ -51,6 +52,15 @@ inline ClampLanes clampUnitOrZero(ClampLanes z) {
 #else
   return z > 0.0 ? (1.0 < z ? ClampLanes{} + 1.0 : z) : ClampLanes{};
 #endif
+}
+
+// clampUnitOrZero on eight doubles (the span loops' eight depths with AVX-512, where the compares
+// and selects go through mask registers; elsewhere GCC makes them lane by lane).
+using ClampLanes8 = double __attribute__((vector_size(64)));
+inline ClampLanes8 clampUnitOrZero(ClampLanes8 z) {
+  using Mask = int64_t __attribute__((vector_size(64)));
+  const Mask positive = z > 0.0, above = 1.0 < z;
+  return positive ? (above ? ClampLanes8{} + 1.0 : z) : ClampLanes8{};
 }
 
 }  // namespace shadowref

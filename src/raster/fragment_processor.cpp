@@ -257,15 +257,10 @@ struct RowDepth {
   v8u codes8(int x) const {
 #if defined(__AVX512F__)
     if constexpr (kPlainFloat) {
-      using v8d = double __attribute__((vector_size(64)));
+      using v8d = ClampLanes8;
       const v8d cx = double(x) + v8d{0.5, 1.5, 2.5, 3.5, 4.5, 5.5, 6.5, 7.5};  // exact
-      using v8dm = int64_t __attribute__((vector_size(64)));
       v8d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
-      // encode's clamp, as clampUnitOrZero: NaN and -0.0 become +0.0.
-      if constexpr (K == RowKind::PlainFloat) {
-        const v8dm positive = z > 0.0, above = 1.0 < z;
-        z = positive ? (above ? v8d{} + 1.0 : z) : v8d{};
-      }
+      if constexpr (K == RowKind::PlainFloat) z = clampUnitOrZero(z);  // encode's clamp
       return std::bit_cast<v8u>(__builtin_convertvector(z, v8f));
     }
 #endif
@@ -298,17 +293,21 @@ void withFlag(bool flag, Fn&& fn) {
   else fn(std::false_type{});
 }
 
+// fn(kind) with the row kind as a compile-time constant.
+template <class Fn>
+void withKind(RowKind kind, Fn&& fn) {
+  switch (kind) {
+    case RowKind::Encoded: fn(std::integral_constant<RowKind, RowKind::Encoded>{}); return;
+    case RowKind::PlainFloat: fn(std::integral_constant<RowKind, RowKind::PlainFloat>{}); return;
+    case RowKind::UnitFloat: fn(std::integral_constant<RowKind, RowKind::UnitFloat>{}); return;
+  }
+}
+
 // fn(compare, kind) with the depth function and the row kind as compile-time constants: what
 // depthTestRows is instantiated for.
 template <class Fn>
 void withRowKind(CompareFunc func, RowKind kind, Fn&& fn) {
-  withCompare(func, [&](auto f) {
-    switch (kind) {
-      case RowKind::Encoded: fn(f, std::integral_constant<RowKind, RowKind::Encoded>{}); return;
-      case RowKind::PlainFloat: fn(f, std::integral_constant<RowKind, RowKind::PlainFloat>{}); return;
-      case RowKind::UnitFloat: fn(f, std::integral_constant<RowKind, RowKind::UnitFloat>{}); return;
-    }
-  });
+  withCompare(func, [&](auto f) { withKind(kind, [&](auto k) { fn(f, k); }); });
 }
 // The same with the depth-write flag as a third constant: fn(compare, kind, write).
 template <class Fn>
@@ -335,11 +334,7 @@ void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, 
     }
     for (; i < n; ++i) codes[i] = row.code(x + i);
   };
-  switch (rowKindOf(t, fb_.depthCodec(), state_.depthClamp)) {
-    case RowKind::Encoded: return fill(std::integral_constant<RowKind, RowKind::Encoded>{});
-    case RowKind::PlainFloat: return fill(std::integral_constant<RowKind, RowKind::PlainFloat>{});
-    case RowKind::UnitFloat: return fill(std::integral_constant<RowKind, RowKind::UnitFloat>{});
-  }
+  withKind(rowKindOf(t, fb_.depthCodec(), state_.depthClamp), fill);
 }
 
 void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& region) {
