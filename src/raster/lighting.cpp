@@ -108,11 +108,14 @@ glm::dvec4 PerPixelLightingShader::shade(const FragmentInput& in) const { return
 namespace {
 
 // Four fragments' worth of one quantity. GCC's vector types: +, -, *, / and comparisons act on
-// all four lanes with IEEE semantics, so a lane holds the bits the scalar code computes.
+// all four lanes with IEEE semantics, so a lane holds the bits the scalar code computes. (Eight
+// lanes gain nothing here: the divisions and square roots, most of the work but the powers, take
+// as long per lane at either width, and a batch's last vector has more dead lanes.)
 using v4d = double __attribute__((vector_size(32)));
 using v4l = int64_t __attribute__((vector_size(32)));  // comparison results: -1 true, 0 false
+constexpr int kBlocks = (kMaxBatch + 3) / 4;
 
-inline v4d splat(double x) { return v4d{} + x; }
+inline v4d splat(double x) { return v4d{x, x, x, x}; }  // (not {} + x, which would turn -0 into +0)
 inline v4d vsqrt(v4d x) {
   v4d r;
   for (int i = 0; i < 4; ++i) r[i] = std::sqrt(x[i]);
@@ -123,24 +126,30 @@ inline v4d vmax0(v4d x) { return x < 0.0 ? splat(0.0) : x; }  // std::max(x, 0.0
 // glm's dot of two dvec3: (a.x * b.x + a.y * b.y) + a.z * b.z.
 inline v4d dot3(v4d ax, v4d ay, v4d az, v4d bx, v4d by, v4d bz) { return ax * bx + ay * by + az * bz; }
 
-// lightContribution for a batch, four fragments per step: its operations in the same order, with
+// Colours of every block of a batch.
+struct BlockColors {
+  v4d r[kBlocks], g[kBlocks], b[kBlocks];
+};
+
+// lightContribution for a batch, four fragments per block: its operations in the same order, with
 // both sides of every early return computed and the result selected (a lane the scalar code would
-// have left early gets +0.0, as the early return's zero vector). The powers are lightingPow's
-// four lanes, as the scalar code's are its lane 0.
+// have left early gets +0.0, as the early return's zero vector). Each step runs over all blocks
+// before the next, so the powers — the longest chains — are taken for the whole batch at once
+// (lightingPowColumn); every lane's power is lightingPow's, as the scalar code's is.
 struct LightingColumns {
-  static constexpr int kBlocks = (kMaxBatch + 3) / 4;
   int count = 0, blocks = 0;
   v4d px[kBlocks], py[kBlocks], pz[kBlocks], nx[kBlocks], ny[kBlocks], nz[kBlocks];
 
-  // Positions, and normals as fragmentNormal makes them.
-  explicit LightingColumns(const FragmentBatch& b) : count(b.count), blocks((b.count + 3) / 4) {
-    const bool back = b.facing == BackFacing;
+  // Positions, and normals as fragmentNormal makes them; lanes past the batch hold copies of its
+  // last fragment.
+  explicit LightingColumns(const FragmentBatch& batch) : count(batch.count), blocks((batch.count + 3) / 4) {
+    const bool back = batch.facing == BackFacing;
     for (int q = 0; q < blocks; ++q) {
       int k[4];
-      for (int lane = 0; lane < 4; ++lane) k[lane] = std::min(4 * q + lane, count - 1);  // padded with a copy
+      for (int lane = 0; lane < 4; ++lane) k[lane] = std::min(4 * q + lane, count - 1);
       const bool whole = 4 * q + 4 <= count;
       auto column = [&](int j) {
-        const double* c = b.varyings[j];
+        const double* c = batch.varyings[j];
         if (!whole) return v4d{c[k[0]], c[k[1]], c[k[2]], c[k[3]]};
         v4d v;
         std::memcpy(&v, c + 4 * q, sizeof v);
@@ -166,66 +175,106 @@ struct LightingColumns {
     }
   }
 
-  void contributions(const LightTerms& L, const glm::dvec3& eye, glm::dvec3* out) const {
-    for (int q = 0; q < blocks; ++q) {
-      v4d r, g, b;
-      block(L, eye, q, r, g, b);
-      for (int lane = 0; lane < 4 && 4 * q + lane < count; ++lane) out[4 * q + lane] = {r[lane], g[lane], b[lane]};
-    }
+  // Towards the light from block q's fragments: the unit direction, the attenuation without the
+  // spot term, and the lanes a point light does not sit on.
+  struct Towards {
+    v4d x, y, z, att;
+    v4l lit;
+  };
+  Towards towardsLight(const LightTerms& L, int q) const {
+    if (L.directional)
+      return {splat(L.direction.x), splat(L.direction.y), splat(L.direction.z), splat(1.0), v4l{} - 1};
+    const v4d tx = L.point.x - px[q], ty = L.point.y - py[q], tz = L.point.z - pz[q];
+    const v4d d = vsqrt(dot3(tx, ty, tz, tx, ty, tz));
+    return {tx / d, ty / d, tz / d, 1.0 / (L.attenuation.x + L.attenuation.y * d + L.attenuation.z * d * d), d != 0.0};
   }
 
-  void block(const LightTerms& L, const glm::dvec3& eye, int q, v4d& outR, v4d& outG, v4d& outB) const {
-    v4d lx, ly, lz, att = splat(1.0);
-    v4l lit = v4l{} - 1;
-    if (L.directional) {
-      lx = splat(L.direction.x);
-      ly = splat(L.direction.y);
-      lz = splat(L.direction.z);
-    } else {
-      const v4d tx = L.point.x - px[q], ty = L.point.y - py[q], tz = L.point.z - pz[q];
-      const v4d d = vsqrt(dot3(tx, ty, tz, tx, ty, tz));
-      lit = d != 0.0;
-      lx = tx / d;
-      ly = ty / d;
-      lz = tz / d;
-      att = 1.0 / (L.attenuation.x + L.attenuation.y * d + L.attenuation.z * d * d);
-      if (L.spot) {
-        const v4d cosAngle = dot3(-lx, -ly, -lz, splat(L.spotAxis.x), splat(L.spotAxis.y), splat(L.spotAxis.z));
-        lit &= ~(cosAngle < L.spotCosCutoff);
-        att *= lightingPow(vmax0(cosAngle), L.spotExponent);
+  // The diffuse term into out; returns N.L.
+  v4d diffuse(const LightTerms& L, int q, Towards& l, BlockColors& out) const {
+    const v4d nDotL = dot3(nx[q], ny[q], nz[q], l.x, l.y, l.z);
+    l.lit &= ~(nDotL <= 0.0);
+    out.r[q] = L.diffuse.x * nDotL;
+    out.g[q] = L.diffuse.y * nDotL;
+    out.b[q] = L.diffuse.z * nDotL;
+    return nDotL;
+  }
+
+  static void attenuate(int q, const Towards& l, BlockColors& out) {
+    out.r[q] = select(l.lit, l.att * out.r[q], splat(0.0));
+    out.g[q] = select(l.lit, l.att * out.g[q], splat(0.0));
+    out.b[q] = select(l.lit, l.att * out.b[q], splat(0.0));
+  }
+
+  void contributions(const LightTerms& L, const glm::dvec3& eye, BlockColors& out) const {
+    if (!L.spot && !L.specular) {  // no powers: block by block, nothing kept between the steps
+      for (int q = 0; q < blocks; ++q) {
+        Towards l = towardsLight(L, q);
+        diffuse(L, q, l, out);
+        attenuate(q, l, out);
       }
+      return;
     }
-    const v4d nDotL = dot3(nx[q], ny[q], nz[q], lx, ly, lz);
-    lit &= ~(nDotL <= 0.0);
-    v4d r = L.diffuse.x * nDotL, g = L.diffuse.y * nDotL, b = L.diffuse.z * nDotL;
-    if (L.specular) {
+    Towards l[kBlocks];
+    double power[4 * kBlocks];  // the bases, then the powers, of every lane
+    auto powerOf = [&](int q) {
+      v4d v;
+      std::memcpy(&v, power + 4 * q, sizeof v);
+      return v;
+    };
+    auto setPower = [&](int q, v4d v) { std::memcpy(power + 4 * q, &v, sizeof v); };
+    auto raise = [&](double exponent) {  // a batch of one vector (small triangles) stays in registers
+      if (blocks == 1) setPower(0, lightingPow(powerOf(0), exponent));
+      else lightingPowColumn(power, 4 * blocks, exponent);
+    };
+    for (int q = 0; q < blocks; ++q) {
+      l[q] = towardsLight(L, q);
+      if (!L.spot) continue;
+      const v4d cosAngle = dot3(-l[q].x, -l[q].y, -l[q].z, splat(L.spotAxis.x), splat(L.spotAxis.y), splat(L.spotAxis.z));
+      l[q].lit &= ~(cosAngle < L.spotCosCutoff);
+      setPower(q, vmax0(cosAngle));
+    }
+    if (L.spot) {
+      raise(L.spotExponent);
+      for (int q = 0; q < blocks; ++q) l[q].att *= powerOf(q);
+    }
+    for (int q = 0; q < blocks; ++q) {
+      const v4d nDotL = diffuse(L, q, l[q], out);
+      if (!L.specular) continue;
       const v4d ex = eye.x - px[q], ey = eye.y - py[q], ez = eye.z - pz[q];
       const v4d ie = 1.0 / vsqrt(dot3(ex, ey, ez, ex, ey, ez));
       const v4d vx = ex * ie, vy = ey * ie, vz = ez * ie;
-      v4d s;
       if (L.blinn) {
-        const v4d hx = lx + vx, hy = ly + vy, hz = lz + vz;
+        const v4d hx = l[q].x + vx, hy = l[q].y + vy, hz = l[q].z + vz;
         const v4d ih = 1.0 / vsqrt(dot3(hx, hy, hz, hx, hy, hz));
-        s = vmax0(dot3(nx[q], ny[q], nz[q], hx * ih, hy * ih, hz * ih));
+        setPower(q, vmax0(dot3(nx[q], ny[q], nz[q], hx * ih, hy * ih, hz * ih)));
       } else {
         const v4d twice = 2.0 * nDotL;
-        s = vmax0(dot3(twice * nx[q] - lx, twice * ny[q] - ly, twice * nz[q] - lz, vx, vy, vz));
+        setPower(q, vmax0(dot3(twice * nx[q] - l[q].x, twice * ny[q] - l[q].y, twice * nz[q] - l[q].z, vx, vy, vz)));
       }
-      const v4d spec = lightingPow(s, L.shininess);
-      r += L.specularColor.x * spec;
-      g += L.specularColor.y * spec;
-      b += L.specularColor.z * spec;
     }
-    outR = select(lit, att * r, splat(0.0));
-    outG = select(lit, att * g, splat(0.0));
-    outB = select(lit, att * b, splat(0.0));
+    if (L.specular) {
+      raise(L.shininess);
+      for (int q = 0; q < blocks; ++q) {
+        const v4d spec = powerOf(q);
+        out.r[q] += L.specularColor.x * spec;
+        out.g[q] += L.specularColor.y * spec;
+        out.b[q] += L.specularColor.z * spec;
+      }
+    }
+    for (int q = 0; q < blocks; ++q) attenuate(q, l[q], out);
   }
 };
 
 }  // namespace
 
 void lightContributions(const FragmentBatch& batch, const LightTerms& light, const glm::dvec3& eye, glm::dvec3* out) {
-  if (batch.count > 0) LightingColumns(batch).contributions(light, eye, out);
+  if (batch.count == 0) return;
+  const LightingColumns columns(batch);
+  BlockColors colors;
+  columns.contributions(light, eye, colors);
+  for (int q = 0; q < columns.blocks; ++q)
+    for (int lane = 0; lane < 4 && 4 * q + lane < batch.count; ++lane)
+      out[4 * q + lane] = {colors.r[q][lane], colors.g[q][lane], colors.b[q][lane]};
 }
 
 // litColor for a batch: c = base, then c += each light's contribution in order, as litColor adds
@@ -233,18 +282,23 @@ void lightContributions(const FragmentBatch& batch, const LightTerms& light, con
 void PerPixelLightingShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const {
   if (batch.count == 0) return;
   const LightingColumns columns(batch);
+  BlockColors sum, light;
   for (int q = 0; q < columns.blocks; ++q) {
-    v4d r = {base_.x, base_.x, base_.x, base_.x}, g = {base_.y, base_.y, base_.y, base_.y},
-        b = {base_.z, base_.z, base_.z, base_.z};  // (not {} + x, which would turn -0 into +0)
-    for (const LightTerms& terms : terms_) {
-      v4d lr, lg, lb;
-      columns.block(terms, eye_, q, lr, lg, lb);
-      r += lr;
-      g += lg;
-      b += lb;
-    }
-    storeColorLanes(r, g, b, ColorLanes{1.0, 1.0, 1.0, 1.0}, std::min(4, batch.count - 4 * q), out + 4 * q);
+    sum.r[q] = splat(base_.x);
+    sum.g[q] = splat(base_.y);
+    sum.b[q] = splat(base_.z);
   }
+  for (const LightTerms& terms : terms_) {
+    columns.contributions(terms, eye_, light);
+    for (int q = 0; q < columns.blocks; ++q) {
+      sum.r[q] += light.r[q];
+      sum.g[q] += light.g[q];
+      sum.b[q] += light.b[q];
+    }
+  }
+  const ColorLanes alpha = {1.0, 1.0, 1.0, 1.0};
+  for (int q = 0; q < columns.blocks; ++q)
+    storeColorLanes(sum.r[q], sum.g[q], sum.b[q], alpha, std::min(4, batch.count - 4 * q), out + 4 * q);
 }
 
 // shade() for every fragment: the interpolated colour columns, copied.

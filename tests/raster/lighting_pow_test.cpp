@@ -1,6 +1,8 @@
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 
 #include <catch2/catch.hpp>
@@ -77,4 +79,29 @@ TEST_CASE("lightingPow gives each lane the bits it gives the value alone", "[ras
       }
     }
   }
+}
+
+TEST_CASE("lightingPowColumn gives every element the bits lightingPow gives it", "[raster][lighting]") {
+  // The batch shaders take the powers of a whole batch at once, several vectors side by side;
+  // each element must still be the scalar function's, whatever the column's length (full groups,
+  // partial groups, a vector's dead lanes) and its neighbours.
+  const double values[] = {0.0, -0.0, 1e-310, 1e-200, 0.001, 0.37, 0.5, 0.75, 0.9999999, 1.0, 1.0000001,
+                           1.4142135623730951, 1.5, INFINITY, -0.25, std::nan("")};
+  constexpr int kValues = int(std::size(values));
+  for (double n : {0.0, 1.0, 3.0, 32.0, 77.7, 128.0, 200.0})
+    for (int count = 0; count <= 70; ++count) {
+      double x[70], y[70];
+      for (int i = 0; i < count; ++i) x[i] = values[(7 * i + int(n)) % kValues];
+      std::copy_n(x, count, y);
+      lightingPowColumn(y, count, n);
+      for (int i = 0; i < count; ++i) {
+        INFO("n " << n << " count " << count << " element " << i << ", x " << x[i]);
+        CHECK(bits(y[i]) == bits(lightingPow(x[i], n)));
+      }
+    }
+  // And the values themselves, not only agreement: 0.5^3 in every element of a column of 37.
+  double halves[37];
+  std::fill_n(halves, 37, 0.5);
+  lightingPowColumn(halves, 37, 3.0);
+  for (double h : halves) CHECK(h == 0.125);
 }
