@@ -267,14 +267,23 @@ struct LightingColumns {
 
 }  // namespace
 
-void lightContributions(const FragmentBatch& batch, const LightTerms& light, const glm::dvec3& eye, glm::dvec3* out) {
+void lightContributions(const FragmentBatch& batch, const LightTerms& light, const glm::dvec3& eye, double* r,
+                        double* g, double* b) {
   if (batch.count == 0) return;
   const LightingColumns columns(batch);
   BlockColors colors;
   columns.contributions(light, eye, colors);
-  for (int q = 0; q < columns.blocks; ++q)
-    for (int lane = 0; lane < 4 && 4 * q + lane < batch.count; ++lane)
-      out[4 * q + lane] = {colors.r[q][lane], colors.g[q][lane], colors.b[q][lane]};
+  const int whole = batch.count / 4;
+  for (int q = 0; q < whole; ++q) {
+    std::memcpy(r + 4 * q, &colors.r[q], sizeof colors.r[q]);
+    std::memcpy(g + 4 * q, &colors.g[q], sizeof colors.g[q]);
+    std::memcpy(b + 4 * q, &colors.b[q], sizeof colors.b[q]);
+  }
+  for (int k = 4 * whole; k < batch.count; ++k) {
+    r[k] = colors.r[whole][k % 4];
+    g[k] = colors.g[whole][k % 4];
+    b[k] = colors.b[whole][k % 4];
+  }
 }
 
 // litColor for a batch: c = base, then c += each light's contribution in order, as litColor adds

@@ -57,9 +57,10 @@ struct LightTerms {
 LightTerms lightTerms(const PhongLight& light, const PhongMaterial& m);
 glm::dvec3 lightContribution(const LightTerms& light, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& eye);
 // lightContribution for every fragment of a batch of per-pixel shading (varyings in the
-// kVaryingPosition/kVaryingNormal layout, normal as fragmentNormal makes it), into out[0..count):
-// the same bits, computed several fragments at a time.
-void lightContributions(const FragmentBatch& batch, const LightTerms& light, const glm::dvec3& eye, glm::dvec3* out);
+// kVaryingPosition/kVaryingNormal layout, normal as fragmentNormal makes it), in columns: fragment
+// k's colour is (r[k], g[k], b[k]). The same bits, computed several fragments at a time.
+void lightContributions(const FragmentBatch& batch, const LightTerms& light, const glm::dvec3& eye, double* r,
+                        double* g, double* b);
 
 // What a shader adds up: optionally the ambient term, plus the listed lights.
 struct LightingSetup {

@@ -41,18 +41,24 @@ class ShadowMappedShader final : public FragmentShader {
       for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(ambient_, 1.0);
       return;
     }
-    glm::dvec3 c[kMaxBatch], light[kMaxBatch];
+    // shade()'s sum in columns, one channel at a time (the loops vectorise): the same operations
+    // per fragment and channel, in the same order.
+    double c[3][kMaxBatch], light[3][kMaxBatch];
     double factor[kMaxBatch];
-    for (int k = 0; k < batch.count; ++k) c[k] = glm::dvec3(0.0);
+    for (double* channel : c) std::fill_n(channel, batch.count, 0.0);
     const double share = 1.0 / double(shadows_.size());
     for (size_t i = 0; i < shadows_.size(); ++i) {
-      if (inRange_[i]) lightContributions(batch, terms_[i], eye_, light);
-      else std::fill_n(light, batch.count, glm::dvec3(0.0));
+      if (inRange_[i]) lightContributions(batch, terms_[i], eye_, light[0], light[1], light[2]);
+      else
+        for (double* channel : light) std::fill_n(channel, batch.count, 0.0);
       shadows_[i]->factors(batch.varyings[kVaryingPosition], batch.varyings[kVaryingPosition + 1],
                            batch.varyings[kVaryingPosition + 2], batch.count, factor);
-      for (int k = 0; k < batch.count; ++k) c[k] += (ambient_ * share + light[k]) * factor[k];
+      for (int j = 0; j < 3; ++j) {
+        const double ambientShare = ambient_[j] * share;
+        for (int k = 0; k < batch.count; ++k) c[j][k] += (ambientShare + light[j][k]) * factor[k];
+      }
     }
-    for (int k = 0; k < batch.count; ++k) out[k] = glm::dvec4(c[k], 1.0);
+    storeColorColumns(c[0], c[1], c[2], 1.0, batch.count, out);
   }
 
   glm::dvec4 shade(const FragmentInput& in) const override {
