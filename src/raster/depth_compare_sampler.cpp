@@ -105,19 +105,36 @@ v4l compare(v4f r, v4f d) {
 }  // namespace
 
 void DepthCompareSampler::sampleDivided(const double* s, const double* t, const double* r, int count, double* out) const {
+  // The texels first, for every point, with a request for each one's line: a large map is far
+  // beyond the caches, and the lookups then wait for their lines together, not one after another.
+  constexpr int kMaxPoints = 64;
+  int64_t texel[kMaxPoints];
+  const int whole = count / 4 * 4;
+  if (whole > kMaxPoints) {  // more than a batch: in batches
+    for (int k = 0; k < count; k += kMaxPoints) sampleDivided(s + k, t + k, r + k, std::min(kMaxPoints, count - k), out + k);
+    return;
+  }
+  const uint32_t* bits = texture->bits.data();
+  for (int k = 0; k < whole; k += 4) {
+    v4d sv, tv;
+    std::memcpy(&sv, s + k, sizeof sv);
+    std::memcpy(&tv, t + k, sizeof tv);
+    const v4i x = nearestTexels(sv, texture->width), y = nearestTexels(tv, texture->height);
+    for (int lane = 0; lane < 4; ++lane) {
+      texel[k + lane] = int64_t(y[lane]) * texture->width + x[lane];
+      __builtin_prefetch(bits + texel[k + lane]);
+    }
+  }
   auto run = [&](auto f) {
     constexpr CompareFunc F = decltype(f)::value;
     int k = 0;
-    for (; k + 4 <= count; k += 4) {
-      v4d sv, tv, rv;
-      std::memcpy(&sv, s + k, sizeof sv);
-      std::memcpy(&tv, t + k, sizeof tv);
+    for (; k < whole; k += 4) {
+      v4d rv;
       std::memcpy(&rv, r + k, sizeof rv);
-      const v4i x = nearestTexels(sv, texture->width), y = nearestTexels(tv, texture->height);
       // r clamped to [0, 1] as std::clamp does it (NaN passes through), then compared in float.
       const v4f rf = __builtin_convertvector(clampUnit(rv), v4f);
       v4f d;
-      for (int lane = 0; lane < 4; ++lane) d[lane] = texture->at(x[lane], y[lane]);
+      for (int lane = 0; lane < 4; ++lane) d[lane] = std::bit_cast<float>(bits[texel[k + lane]]);
       const v4d result = compare<F>(rf, d) ? v4d{} + 1.0 : v4d{} + failValue;
       std::memcpy(out + k, &result, sizeof result);
     }
