@@ -10,7 +10,21 @@ namespace shadowref {
 
 namespace {
 
-template <int N> using MaskLanes = PowMasksOf<N>;  // also whole numbers
+// N doubles in one GCC vector, and the int64 lanes of their comparisons (-1 true, 0 false) and
+// bit fields. (A `vector_size` that depends on a template parameter is dropped by GCC 12 in an
+// alias template, hence one specialisation per width.)
+template <int N> struct LaneTypes;
+template <> struct LaneTypes<4> {
+  typedef double Values __attribute__((vector_size(32)));
+  typedef int64_t Masks __attribute__((vector_size(32)));
+};
+template <> struct LaneTypes<8> {
+  typedef double Values __attribute__((vector_size(64)));
+  typedef int64_t Masks __attribute__((vector_size(64)));
+};
+template <int N> using PowLanesOf = typename LaneTypes<N>::Values;
+template <int N> using MaskLanes = typename LaneTypes<N>::Masks;
+static_assert(sizeof(PowLanesOf<4>) == sizeof(PowLanes));
 
 template <int N> PowLanesOf<N> splat(double x) {
   PowLanesOf<N> v;

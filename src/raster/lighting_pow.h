@@ -11,25 +11,9 @@
 // the float colour buffer's 6e-8. Powers of two and x = 1 are exact.
 #pragma once
 
-#include <cstdint>
-
 namespace shadowref {
 
-// N doubles in one GCC vector. (A `vector_size` whose size depends on a template parameter is
-// dropped by GCC 12 in an alias template, hence one specialisation per width.)
-// Masks: comparisons of Values give -1 (true) or 0 per lane.
-template <int N> struct PowLaneTypes;
-template <> struct PowLaneTypes<4> {
-  typedef double Values __attribute__((vector_size(32)));
-  typedef int64_t Masks __attribute__((vector_size(32)));
-};
-template <> struct PowLaneTypes<8> {
-  typedef double Values __attribute__((vector_size(64)));
-  typedef int64_t Masks __attribute__((vector_size(64)));
-};
-template <int N> using PowLanesOf = typename PowLaneTypes<N>::Values;
-template <int N> using PowMasksOf = typename PowLaneTypes<N>::Masks;
-using PowLanes = PowLanesOf<4>;
+using PowLanes = double __attribute__((vector_size(32)));
 
 // x^n for four x: x >= 0 (or NaN), n in [0, 128] (other n: std::pow, lane by lane).
 // Special values as C's pow: x^0 = 1, +0^n = +0, -0^n = -0 for odd whole n (else +0), NaN^n = NaN.
