@@ -222,10 +222,6 @@ struct LightingColumns {
       return v;
     };
     auto setPower = [&](int q, v4d v) { std::memcpy(power + 4 * q, &v, sizeof v); };
-    auto raise = [&](double exponent) {  // a batch of one vector (small triangles) stays in registers
-      if (blocks == 1) setPower(0, lightingPow(powerOf(0), exponent));
-      else lightingPowColumn(power, 4 * blocks, exponent);
-    };
     for (int q = 0; q < blocks; ++q) {
       l[q] = towardsLight(L, q);
       if (!L.spot) continue;
@@ -234,7 +230,7 @@ struct LightingColumns {
       setPower(q, vmax0(cosAngle));
     }
     if (L.spot) {
-      raise(L.spotExponent);
+      lightingPowColumn(power, 4 * blocks, L.spotExponent);
       for (int q = 0; q < blocks; ++q) l[q].att *= powerOf(q);
     }
     for (int q = 0; q < blocks; ++q) {
@@ -253,7 +249,7 @@ struct LightingColumns {
       }
     }
     if (L.specular) {
-      raise(L.shininess);
+      lightingPowColumn(power, 4 * blocks, L.shininess);
       for (int q = 0; q < blocks; ++q) {
         const v4d spec = powerOf(q);
         out.r[q] += L.specularColor.x * spec;

@@ -74,6 +74,10 @@ template <int N> PowLanesOf<N> powerOfTwo(MaskLanes<N> k) { return fromBits<N>((
 
 bool oddWhole(double n) { return std::floor(n) == n && std::fmod(n, 2.0) == 1.0; }
 
+// The series serve n in (0, 128]; any other n is C's pow, x^0 = 1 included.
+bool seriesRange(double n) { return n > 0.0 && n <= 128.0; }
+double outsideSeriesRange(double x, double n) { return n == 0.0 ? 1.0 : std::pow(x, n); }
+
 // x^n for G vectors of N lanes, n in (0, 128]. Every step is written once and applied to the G
 // vectors in turn: the same operations per lane whatever G is, with G independent chains for the
 // processor to overlap.
@@ -174,8 +178,19 @@ template <int G> void powGroup(double* x, int count, double n) {
 }  // namespace
 
 void lightingPowColumn(double* x, int count, double n) {
-  if (!(n > 0.0 && n <= 128.0)) {
-    for (int i = 0; i < count; ++i) x[i] = n == 0.0 ? 1.0 : std::pow(x[i], n);
+  if (count <= 4) {  // a small triangle's batch: the one vector the one-value function takes
+    PowLanes v{1.0, 1.0, 1.0, 1.0};
+    if (count == 4) std::memcpy(&v, x, sizeof v);
+    else
+      for (int i = 0; i < count; ++i) v[i] = x[i];
+    v = lightingPow(v, n);
+    if (count == 4) std::memcpy(x, &v, sizeof v);
+    else
+      for (int i = 0; i < count; ++i) x[i] = v[i];
+    return;
+  }
+  if (!seriesRange(n)) {
+    for (int i = 0; i < count; ++i) x[i] = outsideSeriesRange(x[i], n);
     return;
   }
   constexpr int kGroup = 4 * kColumnLanes;
@@ -189,8 +204,8 @@ void lightingPowColumn(double* x, int count, double n) {
 }
 
 PowLanes lightingPow(PowLanes x, double n) {
-  if (!(n > 0.0 && n <= 128.0)) {
-    for (int lane = 0; lane < 4; ++lane) x[lane] = n == 0.0 ? 1.0 : std::pow(x[lane], n);
+  if (!seriesRange(n)) {
+    for (int lane = 0; lane < 4; ++lane) x[lane] = outsideSeriesRange(x[lane], n);
     return x;
   }
   powInRange<4, 1>(&x, n);
