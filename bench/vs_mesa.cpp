@@ -23,6 +23,7 @@
 //   vs_mesa --agreement [--images DIR]
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -284,9 +285,54 @@ RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
   return r;
 }
 
+// How long a cache line written on core 0 takes to be seen on core 1, one way, in ns: two threads
+// pinned to the two cores pass a counter back and forth (0 when they cannot be pinned). What two
+// threads of one frame pay whenever one reads what the other wrote — setups, rows of the buffers.
+// The host decides it: on this machine 25-35 ns most of the time, and for minutes at a time about
+// 160 ns (the two virtual CPUs then sit on distant cores); two threads of one process then lose a
+// quarter or more of their speed-up while two separate processes, sharing nothing, do not.
+double crossCoreNs() {
+  if (std::thread::hardware_concurrency() < 2) return 0.0;
+  alignas(128) static std::atomic<int> turn;
+  alignas(128) static std::atomic<bool> unpinned;
+  turn.store(0);
+  unpinned.store(false);
+  constexpr int kRounds = 20000;
+  auto pin = [](int core) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(core, &set);
+    return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+  };
+  double ns = 0.0;
+  std::thread([&] {
+    if (!pin(0)) return;
+    std::thread other([&] {
+      if (!pin(1)) {
+        unpinned.store(true);
+        return;
+      }
+      for (int i = 0; i < kRounds; ++i) {
+        while (turn.load(std::memory_order_acquire) != 2 * i + 1) {}
+        turn.store(2 * i + 2, std::memory_order_release);
+      }
+    });
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < kRounds && !unpinned.load(); ++i) {
+      turn.store(2 * i + 1, std::memory_order_release);
+      while (turn.load(std::memory_order_acquire) != 2 * i + 2 && !unpinned.load()) {}
+    }
+    const double elapsed = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+    other.join();
+    if (!unpinned.load()) ns = elapsed / (2.0 * kRounds);
+  }).join();
+  return ns;
+}
+
 struct Measured {
   std::vector<double> runMedians;
   std::vector<double> cpuRunMedians;
+  std::vector<double> crossCore;  // crossCoreNs() right before each run (shadowref's 2-thread runs)
   std::string renderer;
   double median() const { return bench::median(runMedians); }
   double cpuMedian() const { return bench::median(cpuRunMedians); }
@@ -311,7 +357,9 @@ std::vector<Measured> measure(const SceneCase& c, const std::vector<Config>& con
     for (size_t k = 0; k < configs.size(); ++k) {
       const size_t i = round % 2 == 0 ? k : configs.size() - 1 - k;
       const int frames = configs[i].engine == Engine::Softpipe ? std::max(1, s.frames / 3) : s.frames;
-      const RunResult r = runChild(configs[i], frames, c);
+      const Config& cfg = configs[i];
+      if (cfg.engine == Engine::Shadowref && cfg.threads == 2) m[i].crossCore.push_back(crossCoreNs());
+      const RunResult r = runChild(cfg, frames, c);
       m[i].runMedians.push_back(median(r.frameMs));
       m[i].cpuRunMedians.push_back(median(r.cpuMs));
       m[i].renderer = r.renderer;
@@ -518,14 +566,17 @@ std::vector<Config> comparedConfigs() {
 void printCapacityTable(const std::vector<SceneCase>& cases, const std::vector<std::vector<Measured>>& all) {
   std::printf("\nTwo threads against the machine's capacity for two busy threads: the 1-thread frame rendered by\n"
               "two processes at once (pair: time per frame of the two together); capacity = 1t / pair, 2 on an\n"
-              "idle machine of two equal cores, the ceiling of 2t/1t; share = (1t / 2t) / capacity\n");
-  std::printf("%-15s %7s %7s %7s %6s %6s %6s | %7s %7s %7s %6s %6s %6s\n", "scene", "srg-1t", "srg-2t", "pair", "2t/1t",
-              "capac", "share", "sr-1t", "sr-2t", "pair", "2t/1t", "capac", "share");
+              "idle machine of two equal cores, the ceiling of 2t/1t; share = (1t / 2t) / capacity; xcore: ns\n"
+              "for a cache line to pass between the cores, measured before each 2-thread run (median/largest)\n");
+  std::printf("%-15s %7s %7s %7s %6s %6s %6s %7s | %7s %7s %7s %6s %6s %6s %7s\n", "scene", "srg-1t", "srg-2t", "pair",
+              "2t/1t", "capac", "share", "xcore", "sr-1t", "sr-2t", "pair", "2t/1t", "capac", "share", "xcore");
   for (size_t k = 0; k < all.size(); ++k) {
     std::printf("%-15s", cases[k].label.c_str());
     const auto row = [&](Column one, Column two, Column pair) {
       const double t1 = all[k][size_t(one)].median(), t2 = all[k][size_t(two)].median(), tp = all[k][size_t(pair)].median();
-      std::printf(" %7.2f %7.2f %7.2f %6.2f %6.2f %6.2f", t1, t2, tp, t1 / t2, t1 / tp, (t1 / t2) / (t1 / tp));
+      const std::vector<double>& x = all[k][size_t(two)].crossCore;
+      const std::string xcore = x.empty() ? "-" : std::to_string(int(median(x))) + "/" + std::to_string(int(*std::max_element(x.begin(), x.end())));
+      std::printf(" %7.2f %7.2f %7.2f %6.2f %6.2f %6.2f %7s", t1, t2, tp, t1 / t2, t1 / tp, (t1 / t2) / (t1 / tp), xcore.c_str());
     };
     row(kSrg1, kSrg2, kSrgPair);
     std::printf(" |");
@@ -577,7 +628,14 @@ std::vector<std::vector<Measured>> compareScenes(const Settings& s, std::ofstrea
   std::fprintf(stderr, "comparing");
   for (const SceneCase& c : cases) {
     all.push_back(measure(c, configs, s));
-    for (size_t i = 0; i < configs.size(); ++i) csvRow(csv, "compare", c, configs[i], all.back()[i]);
+    for (size_t i = 0; i < configs.size(); ++i) {
+      csvRow(csv, "compare", c, configs[i], all.back()[i]);
+      const std::vector<double>& x = all.back()[i].crossCore;
+      if (!x.empty())
+        csv << "cross-core," << c.label << ',' << c.houses << ',' << c.lights << ',' << configs[i].engineName() << ','
+            << configs[i].threads << ',' << x.size() << ',' << median(x) << ',' << *std::min_element(x.begin(), x.end())
+            << ',' << *std::max_element(x.begin(), x.end()) << ",,\"ns for a cache line to pass between the cores, before each run\"\n";
+    }
   }
   std::fprintf(stderr, "\n");
   std::printf("\nTime per frame at 800x640, median of %d alternating runs of %d frames (softpipe %d), in ms;\n"
@@ -741,6 +799,16 @@ void printCoreSpeeds(const char* when, std::ofstream& csv) {
   std::printf(" of the fastest core's speed\n");
 }
 
+void printCrossCore(const char* when, std::ofstream& csv) {
+  const double ns = crossCoreNs();
+  std::printf("cores%s: a cache line written on one core is read on the other after %.0f ns (25-35 on most\n"
+              "days here; about 160 while the host keeps the two virtual CPUs far apart, and then two threads\n"
+              "of one frame gain less)\n",
+              when, ns);
+  csv << "probe,cross-core" << (*when ? "-end" : "") << ",0,0,machine,2,1," << ns
+      << ",,,,\"ns for a cache line to pass from one core to the other\"\n";
+}
+
 // Issue 7's targets against this run's figures (issue_targets.h), like for like: shadowref at
 // least as fast as llvmpipe at the same thread count and at least 10x softpipe, in both lighting
 // pairs; two threads at least 1.8x one, with the host's capacity for two threads beside it (the
@@ -794,6 +862,7 @@ int runDriver(const Settings& s) {
   std::ofstream csv = openCsv(s.csvPath);
   csv << "probe,before,0,0,machine,2,1," << before.parallelism << ",,," << before.cpuShare << ",\"parallelism; cpu share\"\n";
   printCoreSpeeds("", csv);
+  printCrossCore("", csv);
   const std::vector<std::vector<Measured>> compared = compareScenes(s, csv);
   const std::vector<bool> identical = checkDeterminism(comparedScenes(), csv);
   std::optional<ScalingFits> fits;
@@ -803,6 +872,7 @@ int runDriver(const Settings& s) {
               after.cpuShare, loadAverage().c_str());
   csv << "probe,after,0,0,machine,2,1," << after.parallelism << ",,," << after.cpuShare << ",\"parallelism; cpu share\"\n";
   printCoreSpeeds(" at the end", csv);
+  printCrossCore(" at the end", csv);
   agreementTable("", &csv);
   printTargets(comparedScenes(), compared, identical, fits);
   std::printf("\nCSV: %s\n", s.csvPath.c_str());
