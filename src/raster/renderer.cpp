@@ -416,19 +416,20 @@ constexpr int kBandsPerThread = 3;
 constexpr int kMinBandRows = 16;
 // Below this many candidate pixels a draw is not worth waking the other threads for.
 constexpr int64_t kParallelThreshold = 2048;
+}  // namespace
 
-template <class BoundsList>
-int64_t candidatePixels(const BoundsList& bounds, size_t first, size_t count, const Rect& r) {
+// The pixels of the draw's region inside its setups' bounding boxes: an upper bound of its work.
+int64_t Renderer::candidatePixels(const PendingDraw& draw) const {
+  const Rect& r = draw.region;
   int64_t sum = 0;
-  for (size_t i = first; i < first + count; ++i) {
-    const auto& t = bounds[i];
+  for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
+    const SetupBounds& t = pendingBounds_[i];
     const int64_t w = std::min(t.maxX, r.x + r.width - 1) - std::max(t.minX, r.x) + 1;
     const int64_t h = std::min(t.maxY, r.y + r.height - 1) - std::max(t.minY, r.y) + 1;
     if (w > 0 && h > 0) sum += w * h;
   }
   return sum;
 }
-}  // namespace
 
 void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const {
   if (referencePath_) {
@@ -561,7 +562,7 @@ void Renderer::flush() {
   for (const PendingDraw& d : pending_) {
     minY = std::min(minY, d.minY);
     maxY = std::max(maxY, d.maxY);
-    if (candidates < kParallelThreshold) candidates += candidatePixels(pendingBounds_, d.first, d.count, d.region);
+    if (candidates < kParallelThreshold) candidates += candidatePixels(d);
   }
   if (maxY < minY) {  // no draw left to rasterize (none made, or all culled or clipped away whole)
     clearsNow();

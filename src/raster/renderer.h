@@ -149,6 +149,7 @@ class Renderer {
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();
   void rasterizeBand(int y0, int y1, RasterStats& stats) const;
+  int64_t candidatePixels(const PendingDraw& draw) const;
   // A clear waiting for the flush, done before pending_[beforeDraw] (after every draw if there are
   // no more).
   struct PendingClear {
