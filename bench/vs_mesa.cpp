@@ -833,10 +833,19 @@ void printTargets(const std::vector<SceneCase>& cases, const std::vector<std::ve
   table.atLeast("per pixel, 1 thread: x llvmpipe >= 1", 1.0, ratio(kLp1, kSr1));
   table.atLeast("per pixel, 2 threads: x llvmpipe >= 1", 1.0, ratio(kLp2, kSr2));
   table.atLeast("per pixel: x softpipe >= 10", 10.0, ratio(kSopp, kSr1));
+  const auto crossCore = [&](Column c) {
+    std::vector<double> v;
+    for (const std::vector<Measured>& m : all) v.push_back(median(m[size_t(c)].crossCore));
+    return v;
+  };
   table.atLeast("per vertex: 2 threads / 1 >= 1.8", 1.8, ratio(kSrg1, kSrg2));
   table.information("  the host's capacity for two threads", ratio(kSrg1, kSrgPair));
+  table.information("  ns for a line between the cores", crossCore(kSrg2));
+  table.information("  llvmpipe's 2 threads / 1, same runs", ratio(kLl1, kLl2));
   table.atLeast("per pixel: 2 threads / 1 >= 1.8", 1.8, ratio(kSr1, kSr2));
   table.information("  the host's capacity for two threads", ratio(kSr1, kSrPair));
+  table.information("  ns for a line between the cores", crossCore(kSr2));
+  table.information("  llvmpipe's 2 threads / 1, same runs", ratio(kLp1, kLp2));
   table.holds("buffers of 1, 2 and 8 threads", identical, "identical", "DIFFERENT");
   if (fits) {
     table.single("linear in houses, 1 thread: R2 >= 0.95", fits->houses1, kLinearR2);
