@@ -69,15 +69,6 @@ bool wants(const std::vector<std::string>& dumps, const char* what) {
   return std::find(dumps.begin(), dumps.end(), what) != dumps.end();
 }
 
-// The EXR extras of --dump stencil: with several lights, one stencil channel per light.
-ExrExtras stencilExtras(const FrameResult& frame) {
-  ExrExtras extras;
-  if (frame.stencilPerLight.size() < 2) return extras;
-  for (size_t i = 0; i < frame.stencilPerLight.size(); ++i)
-    extras.channels.push_back(NamedChannel::stencilChannel("stencil." + frame.stencilLightNames[i], frame.stencilPerLight[i]));
-  return extras;
-}
-
 void writeOutput(const FrameResult& frame, const std::string& out, const ExrExtras& extras) {
   ensureParentDirectory(out);
   std::string ext = std::filesystem::path(out).extension().string();
@@ -185,7 +176,7 @@ int runRender(const RenderArgs& args) {
       };
     }
     const FrameResult frame = renderFrame(*scene, options);
-    const ExrExtras extras = stencilExtras(frame);
+    const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
     for (const std::string& out : outputs) {
       writeOutput(frame, out, extras);
       if (!args.quiet) std::cerr << "wrote " << out << '\n';

@@ -105,6 +105,14 @@ NamedChannel NamedChannel::stencilChannel(std::string name, std::span<const uint
   return uintChannel(std::move(name), std::vector<uint32_t>(stencil.begin(), stencil.end()));
 }
 
+ExrExtras perLightStencilChannels(std::span<const PixelVector<uint8_t>> stencils, std::span<const std::string> names) {
+  ExrExtras extras;
+  if (stencils.size() < 2) return extras;
+  for (size_t i = 0; i < stencils.size(); ++i)
+    extras.channels.push_back(NamedChannel::stencilChannel("stencil." + names[i], stencils[i]));
+  return extras;
+}
+
 std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& extras) {
   const size_t n = size_t(fb.width()) * size_t(fb.height());
   std::vector<NamedChannel> channels;

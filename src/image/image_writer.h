@@ -57,6 +57,10 @@ struct ExrExtras {
   std::vector<NamedChannel> channels;  // written after the framebuffer's channels, in this order
 };
 
+// With several lights, one stencil channel per light, "stencil.<name>" (each light's counts after
+// its volume pass; the framebuffer's own "stencil" holds the last light's); with one, none.
+ExrExtras perLightStencilChannels(std::span<const PixelVector<uint8_t>> stencils, std::span<const std::string> names);
+
 // The channels writeExr writes for fb, in order, each in framebuffer order:
 //   R, G, B, A  FLOAT (32-bit: a reference keeps every bit the colour buffer holds)  if hasColor
 //   Z           FLOAT, the window depth decoded from the depth codes                  if hasDepth

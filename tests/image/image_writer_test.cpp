@@ -140,6 +140,22 @@ TEST_CASE("EXR writes only the buffers the framebuffer has", "[image]") {
   CHECK(dir.entries() == std::vector<std::string>{"stencil-only.exr"});
 }
 
+TEST_CASE("per-light stencil channels: one per light, named stencil.<light>, only for several lights", "[image]") {
+  std::vector<PixelVector<uint8_t>> stencils(2);
+  stencils[0].assign({1, 2, 255});
+  stencils[1].assign({0, 7, 3});
+  const std::vector<std::string> names{"L0", "L1"};
+  const ExrExtras two = perLightStencilChannels(stencils, names);
+  REQUIRE(two.channels.size() == 2);
+  CHECK(two.channels[0].name == "stencil.L0");
+  CHECK(two.channels[1].name == "stencil.L1");
+  CHECK(two.channels[0].kind == ChannelKind::UInt32);
+  CHECK(two.channels[0].uints == std::vector<uint32_t>{1, 2, 255});
+  CHECK(two.channels[1].uints == std::vector<uint32_t>{0, 7, 3});
+  // One light: its counts are the framebuffer's own stencil channel, nothing extra.
+  CHECK(perLightStencilChannels(std::span(stencils.data(), 1), std::span(names.data(), 1)).channels.empty());
+}
+
 TEST_CASE("EXR extras add per-light stencil channels as UINT32 and float channels as FLOAT", "[image]") {
   TempDir dir("exr-extras");
   Framebuffer fb(2, 1);

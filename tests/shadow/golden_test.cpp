@@ -60,16 +60,6 @@ FrameResult renderCase(const GoldenCase& c) {
   return renderFrame(scene, options);
 }
 
-// One stencil channel per light when there are several (the framebuffer's own holds the last).
-ExrExtras perLightStencils(const FrameResult& frame) {
-  ExrExtras extras;
-  if (frame.stencilPerLight.size() < 2) return extras;
-  for (size_t i = 0; i < frame.stencilPerLight.size(); ++i)
-    extras.channels.push_back(
-        NamedChannel::stencilChannel("stencil." + frame.stencilLightNames[i], frame.stencilPerLight[i]));
-  return extras;
-}
-
 }  // namespace
 
 TEST_CASE("golden: every shadow-volume method on room, pumpkins, city16, minimal and a soft light matches its EXR "
@@ -77,7 +67,7 @@ TEST_CASE("golden: every shadow-volume method on room, pumpkins, city16, minimal
   const bool update = updatingGoldens();
   for (const GoldenCase& c : goldenCases()) {
     const FrameResult frame = renderCase(c);
-    const ExrExtras extras = perLightStencils(frame);
+    const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
     const std::string path = goldenPath(c.name);
     INFO("golden " << c.name << " (" << path << ")");
     // Not vacuous: every golden holds colour, depth and the stencil of each light.
@@ -105,7 +95,7 @@ TEST_CASE("golden: the soft-light golden holds one stencil channel per light, an
           "[golden]") {
   const FrameResult frame = renderCase(goldenCases().back());
   REQUIRE(frame.stencilPerLight.size() == 9);  // the light plus 8 on a square (000 §3.6)
-  const ExrExtras extras = perLightStencils(frame);
+  const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
   REQUIRE(extras.channels.size() == 9);
   CHECK(extras.channels[0].name == "stencil.L0");
   CHECK(extras.channels[8].name == "stencil.L8");
