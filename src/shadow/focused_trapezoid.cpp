@@ -8,27 +8,6 @@ namespace {
 
 glm::dvec2 projectXY(const glm::dvec4& clip) { return glm::dvec2(clip) / clip.w; }
 
-// 002 Listing 10e as trapezoid.h reads it: the bounding rectangle of the points, clipped to the
-// light's view [−1, 1]².
-Trapezoid boundingRectangle(const std::vector<glm::dvec2>& points) {
-  glm::dvec2 lo(kInfinity), hi(-kInfinity);
-  for (const glm::dvec2& q : points) {
-    lo = glm::min(lo, q);
-    hi = glm::max(hi, q);
-  }
-  lo = glm::max(lo, glm::dvec2(-1.0));
-  hi = glm::min(hi, glm::dvec2(1.0));
-  if (!(lo.x < hi.x && lo.y < hi.y)) lo = glm::dvec2(-1.0), hi = glm::dvec2(1.0);
-  Trapezoid tz;
-  tz.fallback = true;
-  tz.t[0] = {lo.x, lo.y};
-  tz.t[1] = {hi.x, lo.y};
-  tz.t[2] = {hi.x, hi.y};
-  tz.t[3] = {lo.x, hi.y};
-  tz.NT = parallelogramToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
-  return tz;
-}
-
 bool allInFront(const std::array<glm::dvec4, 8>& clip) {
   return std::all_of(clip.begin(), clip.end(), [](const glm::dvec4& c) { return c.w > 0.0; });
 }

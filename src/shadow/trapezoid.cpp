@@ -16,27 +16,6 @@ glm::dvec4 meanOf(const std::array<glm::dvec4, 8>& c, size_t first) {
   return (c[first] + c[first + 1] + c[first + 2] + c[first + 3]) / 4.0;
 }
 
-// 002 Listing 10e, as SPEC.md §4 reads it: the bounding rectangle of the frustum, clipped to the
-// light's view [−1, 1]² (nothing outside it is in the map anyway).
-Trapezoid boundingRectangle(const std::array<glm::dvec2, 8>& p) {
-  glm::dvec2 lo(kInfinity), hi(-kInfinity);
-  for (const glm::dvec2& q : p) {
-    lo = glm::min(lo, q);
-    hi = glm::max(hi, q);
-  }
-  lo = glm::max(lo, glm::dvec2(-1.0));
-  hi = glm::min(hi, glm::dvec2(1.0));
-  if (!(lo.x < hi.x && lo.y < hi.y)) lo = glm::dvec2(-1.0), hi = glm::dvec2(1.0);
-  Trapezoid tz;
-  tz.fallback = true;
-  tz.t[0] = {lo.x, lo.y};
-  tz.t[1] = {hi.x, lo.y};
-  tz.t[2] = {hi.x, hi.y};
-  tz.t[3] = {lo.x, hi.y};
-  tz.NT = parallelogramToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
-  return tz;
-}
-
 }  // namespace
 
 std::array<glm::dvec3, 8> frustumCorners(const Camera& camera, double aspect, double farOverride) {
@@ -92,6 +71,25 @@ bool nearPlaneInsideFarPlane(const std::array<glm::dvec2, 8>& p) {
       if (!(orientation * cross2(b - a, p[k] - a) > 0.0)) return false;
     }
   return true;
+}
+
+Trapezoid boundingRectangle(std::span<const glm::dvec2> points) {
+  glm::dvec2 lo(kInfinity), hi(-kInfinity);
+  for (const glm::dvec2& q : points) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  lo = glm::max(lo, glm::dvec2(-1.0));
+  hi = glm::min(hi, glm::dvec2(1.0));
+  if (!(lo.x < hi.x && lo.y < hi.y)) lo = glm::dvec2(-1.0), hi = glm::dvec2(1.0);
+  Trapezoid tz;
+  tz.fallback = true;
+  tz.t[0] = {lo.x, lo.y};
+  tz.t[1] = {hi.x, lo.y};
+  tz.t[2] = {hi.x, hi.y};
+  tz.t[3] = {lo.x, hi.y};
+  tz.NT = parallelogramToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
+  return tz;
 }
 
 Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& clip, double focusRegion) {

@@ -104,6 +104,11 @@ bool nearPlaneInsideFarPlane(const std::array<glm::dvec2, 8>& p);
 // focusRegion in (0, 1); 002 uses 0.4.
 Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& frustumCornersLightClip, double focusRegion);
 
+// 002 Listing 10e's fallback: the bounding rectangle of the points, clipped to the light's view
+// [−1, 1]² (nothing outside it is in the map anyway; the whole view when nothing of it is left),
+// as a trapezoid with `fallback` set. Shared by computeTrapezoid and focusedTrapezoid.
+Trapezoid boundingRectangle(std::span<const glm::dvec2> points);
+
 // Steps 5 and 6 of 002 §4.1.2, shared by computeTrapezoid and focusedTrapezoid. The frame: the
 // centre line from `nearCentre` along the unit vector d, its unit normal n, the top line at
 // s = sMin and the base line at s = sMax along d; tz.lambda and tz.deltaPrime are set.

@@ -1,5 +1,6 @@
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -465,4 +466,23 @@ TEST_CASE("shadowLightView is orthographic for a directional light, perspective 
   l.type = LightType::Spot;
   l.position = {0.0, 5.0, 0.0};
   CHECK(shadowLightView(l, scene).projection[2][3] == -1.0);
+}
+
+TEST_CASE("the fallback rectangle: the points' bounds cut to [-1, 1]², the whole view when nothing is left",
+          "[shadowmap]") {
+  // Hand-made: x from -0.5 to 2 (cut to 1), y from -0.2 to 0.9.
+  const std::vector<glm::dvec2> points = {{-0.5, -0.2}, {0.3, 0.9}, {2.0, 0.1}};
+  const Trapezoid tz = boundingRectangle(points);
+  CHECK(tz.fallback);
+  CHECK(tz.t[0] == glm::dvec2(-0.5, -0.2));
+  CHECK(tz.t[1] == glm::dvec2(1.0, -0.2));
+  CHECK(tz.t[2] == glm::dvec2(1.0, 0.9));
+  CHECK(tz.t[3] == glm::dvec2(-0.5, 0.9));
+  for (int i = 0; i < 4; ++i) requireNear(warp(tz.NT, tz.t[i]), kSquare[i]);
+  // Every point outside the view: the rectangle is the view itself, N_T the identity on it.
+  const std::vector<glm::dvec2> outside = {{3.0, 3.0}, {4.0, 5.0}};
+  const Trapezoid whole = boundingRectangle(outside);
+  CHECK(whole.t[0] == glm::dvec2(-1.0, -1.0));
+  CHECK(whole.t[2] == glm::dvec2(1.0, 1.0));
+  requireNear(warp(whole.NT, {0.25, -0.5}), {0.25, -0.5});
 }
