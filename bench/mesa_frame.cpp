@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "conformance/gl_state.h"
 #include "conformance/osmesa_harness.h"
 #include "raster/lighting.h"
 #include "raster/render_state.h"
@@ -24,7 +25,7 @@ namespace shadowref::bench {
 
 namespace {
 
-// GL 1.5+ entry points, loaded like the conformance harness does (gl.h declares GL 1.1 only).
+// GL 1.5+ entry points (gl.h declares GL 1.1 only), loaded by conformance::loadGlFunction.
 struct GlFunctions {
   PFNGLCREATESHADERPROC createShader = nullptr;
   PFNGLSHADERSOURCEPROC shaderSource = nullptr;
@@ -48,9 +49,7 @@ struct GlFunctions {
   PFNGLUNIFORM4FVPROC uniform4fv = nullptr;
   PFNGLUNIFORMMATRIX3FVPROC uniformMatrix3fv = nullptr;
   PFNGLUNIFORMMATRIX4FVPROC uniformMatrix4fv = nullptr;
-  PFNGLSTENCILFUNCSEPARATEPROC stencilFuncSeparate = nullptr;
-  PFNGLSTENCILOPSEPARATEPROC stencilOpSeparate = nullptr;
-  PFNGLSTENCILMASKSEPARATEPROC stencilMaskSeparate = nullptr;
+  conformance::GlStencilFunctions stencil;
   PFNGLGENBUFFERSPROC genBuffers = nullptr;
   PFNGLDELETEBUFFERSPROC deleteBuffers = nullptr;
   PFNGLBINDBUFFERPROC bindBuffer = nullptr;
@@ -62,97 +61,41 @@ struct GlFunctions {
   PFNGLCHECKFRAMEBUFFERSTATUSPROC checkFramebufferStatus = nullptr;
 };
 
-template <class Fn>
-Fn load(const char* name) {
-  auto fn = reinterpret_cast<Fn>(OSMesaGetProcAddress(name));
-  if (!fn) throw std::runtime_error(std::string("OSMesa lacks ") + name);
-  return fn;
-}
-
 GlFunctions loadFunctions() {
   GlFunctions gl;
-  gl.stencilFuncSeparate = load<PFNGLSTENCILFUNCSEPARATEPROC>("glStencilFuncSeparate");
-  gl.stencilOpSeparate = load<PFNGLSTENCILOPSEPARATEPROC>("glStencilOpSeparate");
-  gl.stencilMaskSeparate = load<PFNGLSTENCILMASKSEPARATEPROC>("glStencilMaskSeparate");
-  gl.genBuffers = load<PFNGLGENBUFFERSPROC>("glGenBuffers");
-  gl.deleteBuffers = load<PFNGLDELETEBUFFERSPROC>("glDeleteBuffers");
-  gl.bindBuffer = load<PFNGLBINDBUFFERPROC>("glBindBuffer");
-  gl.bufferData = load<PFNGLBUFFERDATAPROC>("glBufferData");
-  gl.genFramebuffers = load<PFNGLGENFRAMEBUFFERSPROC>("glGenFramebuffers");
-  gl.deleteFramebuffers = load<PFNGLDELETEFRAMEBUFFERSPROC>("glDeleteFramebuffers");
-  gl.bindFramebuffer = load<PFNGLBINDFRAMEBUFFERPROC>("glBindFramebuffer");
-  gl.framebufferTexture2D = load<PFNGLFRAMEBUFFERTEXTURE2DPROC>("glFramebufferTexture2D");
-  gl.checkFramebufferStatus = load<PFNGLCHECKFRAMEBUFFERSTATUSPROC>("glCheckFramebufferStatus");
-  gl.createShader = load<PFNGLCREATESHADERPROC>("glCreateShader");
-  gl.shaderSource = load<PFNGLSHADERSOURCEPROC>("glShaderSource");
-  gl.compileShader = load<PFNGLCOMPILESHADERPROC>("glCompileShader");
-  gl.getShaderiv = load<PFNGLGETSHADERIVPROC>("glGetShaderiv");
-  gl.getShaderInfoLog = load<PFNGLGETSHADERINFOLOGPROC>("glGetShaderInfoLog");
-  gl.deleteShader = load<PFNGLDELETESHADERPROC>("glDeleteShader");
-  gl.createProgram = load<PFNGLCREATEPROGRAMPROC>("glCreateProgram");
-  gl.attachShader = load<PFNGLATTACHSHADERPROC>("glAttachShader");
-  gl.linkProgram = load<PFNGLLINKPROGRAMPROC>("glLinkProgram");
-  gl.getProgramiv = load<PFNGLGETPROGRAMIVPROC>("glGetProgramiv");
-  gl.getProgramInfoLog = load<PFNGLGETPROGRAMINFOLOGPROC>("glGetProgramInfoLog");
-  gl.deleteProgram = load<PFNGLDELETEPROGRAMPROC>("glDeleteProgram");
-  gl.useProgram = load<PFNGLUSEPROGRAMPROC>("glUseProgram");
-  gl.getUniformLocation = load<PFNGLGETUNIFORMLOCATIONPROC>("glGetUniformLocation");
-  gl.uniform1i = load<PFNGLUNIFORM1IPROC>("glUniform1i");
-  gl.uniform1f = load<PFNGLUNIFORM1FPROC>("glUniform1f");
-  gl.uniform3f = load<PFNGLUNIFORM3FPROC>("glUniform3f");
-  gl.uniform1fv = load<PFNGLUNIFORM1FVPROC>("glUniform1fv");
-  gl.uniform3fv = load<PFNGLUNIFORM3FVPROC>("glUniform3fv");
-  gl.uniform4fv = load<PFNGLUNIFORM4FVPROC>("glUniform4fv");
-  gl.uniformMatrix3fv = load<PFNGLUNIFORMMATRIX3FVPROC>("glUniformMatrix3fv");
-  gl.uniformMatrix4fv = load<PFNGLUNIFORMMATRIX4FVPROC>("glUniformMatrix4fv");
+  gl.stencil = conformance::GlStencilFunctions::load();
+  gl.genBuffers = conformance::loadGlFunction<PFNGLGENBUFFERSPROC>("glGenBuffers");
+  gl.deleteBuffers = conformance::loadGlFunction<PFNGLDELETEBUFFERSPROC>("glDeleteBuffers");
+  gl.bindBuffer = conformance::loadGlFunction<PFNGLBINDBUFFERPROC>("glBindBuffer");
+  gl.bufferData = conformance::loadGlFunction<PFNGLBUFFERDATAPROC>("glBufferData");
+  gl.genFramebuffers = conformance::loadGlFunction<PFNGLGENFRAMEBUFFERSPROC>("glGenFramebuffers");
+  gl.deleteFramebuffers = conformance::loadGlFunction<PFNGLDELETEFRAMEBUFFERSPROC>("glDeleteFramebuffers");
+  gl.bindFramebuffer = conformance::loadGlFunction<PFNGLBINDFRAMEBUFFERPROC>("glBindFramebuffer");
+  gl.framebufferTexture2D = conformance::loadGlFunction<PFNGLFRAMEBUFFERTEXTURE2DPROC>("glFramebufferTexture2D");
+  gl.checkFramebufferStatus = conformance::loadGlFunction<PFNGLCHECKFRAMEBUFFERSTATUSPROC>("glCheckFramebufferStatus");
+  gl.createShader = conformance::loadGlFunction<PFNGLCREATESHADERPROC>("glCreateShader");
+  gl.shaderSource = conformance::loadGlFunction<PFNGLSHADERSOURCEPROC>("glShaderSource");
+  gl.compileShader = conformance::loadGlFunction<PFNGLCOMPILESHADERPROC>("glCompileShader");
+  gl.getShaderiv = conformance::loadGlFunction<PFNGLGETSHADERIVPROC>("glGetShaderiv");
+  gl.getShaderInfoLog = conformance::loadGlFunction<PFNGLGETSHADERINFOLOGPROC>("glGetShaderInfoLog");
+  gl.deleteShader = conformance::loadGlFunction<PFNGLDELETESHADERPROC>("glDeleteShader");
+  gl.createProgram = conformance::loadGlFunction<PFNGLCREATEPROGRAMPROC>("glCreateProgram");
+  gl.attachShader = conformance::loadGlFunction<PFNGLATTACHSHADERPROC>("glAttachShader");
+  gl.linkProgram = conformance::loadGlFunction<PFNGLLINKPROGRAMPROC>("glLinkProgram");
+  gl.getProgramiv = conformance::loadGlFunction<PFNGLGETPROGRAMIVPROC>("glGetProgramiv");
+  gl.getProgramInfoLog = conformance::loadGlFunction<PFNGLGETPROGRAMINFOLOGPROC>("glGetProgramInfoLog");
+  gl.deleteProgram = conformance::loadGlFunction<PFNGLDELETEPROGRAMPROC>("glDeleteProgram");
+  gl.useProgram = conformance::loadGlFunction<PFNGLUSEPROGRAMPROC>("glUseProgram");
+  gl.getUniformLocation = conformance::loadGlFunction<PFNGLGETUNIFORMLOCATIONPROC>("glGetUniformLocation");
+  gl.uniform1i = conformance::loadGlFunction<PFNGLUNIFORM1IPROC>("glUniform1i");
+  gl.uniform1f = conformance::loadGlFunction<PFNGLUNIFORM1FPROC>("glUniform1f");
+  gl.uniform3f = conformance::loadGlFunction<PFNGLUNIFORM3FPROC>("glUniform3f");
+  gl.uniform1fv = conformance::loadGlFunction<PFNGLUNIFORM1FVPROC>("glUniform1fv");
+  gl.uniform3fv = conformance::loadGlFunction<PFNGLUNIFORM3FVPROC>("glUniform3fv");
+  gl.uniform4fv = conformance::loadGlFunction<PFNGLUNIFORM4FVPROC>("glUniform4fv");
+  gl.uniformMatrix3fv = conformance::loadGlFunction<PFNGLUNIFORMMATRIX3FVPROC>("glUniformMatrix3fv");
+  gl.uniformMatrix4fv = conformance::loadGlFunction<PFNGLUNIFORMMATRIX4FVPROC>("glUniformMatrix4fv");
   return gl;
-}
-
-GLenum glCompare(CompareFunc f) {
-  static constexpr GLenum table[] = {GL_NEVER, GL_LESS, GL_EQUAL, GL_LEQUAL, GL_GREATER, GL_NOTEQUAL, GL_GEQUAL, GL_ALWAYS};
-  return table[size_t(f)];
-}
-
-GLenum glStencilOpOf(StencilOp op) {
-  static constexpr GLenum table[] = {GL_KEEP, GL_ZERO, GL_REPLACE, GL_INCR, GL_DECR, GL_INVERT, GL_INCR_WRAP, GL_DECR_WRAP};
-  return table[size_t(op)];
-}
-
-GLenum glBlendFactorOf(BlendFactor f) {
-  static constexpr GLenum table[] = {GL_ZERO,      GL_ONE,           GL_SRC_COLOR,          GL_ONE_MINUS_SRC_COLOR,
-                                     GL_DST_COLOR, GL_ONE_MINUS_DST_COLOR, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA,
-                                     GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA};
-  return table[size_t(f)];
-}
-
-void enable(GLenum cap, bool on) { on ? glEnable(cap) : glDisable(cap); }
-
-// The RenderState as GL state, field by field (as tests/conformance/osmesa_harness.cpp does).
-// clipFar has no GL counterpart: under P_inf the w = 0 points have z = w exactly and pass GL's
-// far-plane test z <= w.
-void applyState(const RenderState& s, const GlFunctions& gl) {
-  glViewport(s.viewport.x, s.viewport.y, s.viewport.width, s.viewport.height);
-  glDepthRange(s.viewport.nearVal, s.viewport.farVal);
-  enable(GL_SCISSOR_TEST, s.scissorTest);
-  enable(GL_CULL_FACE, s.cull != CullMode::None);
-  glCullFace(s.cull == CullMode::Front ? GL_FRONT : s.cull == CullMode::Back ? GL_BACK : GL_FRONT_AND_BACK);
-  glFrontFace(s.frontFace == FrontFace::CCW ? GL_CCW : GL_CW);
-  enable(GL_DEPTH_TEST, s.depthTest);
-  glDepthFunc(glCompare(s.depthFunc));
-  glDepthMask(s.depthWrite ? GL_TRUE : GL_FALSE);
-  enable(GL_POLYGON_OFFSET_FILL, s.polygonOffset.enabled);
-  glPolygonOffset(GLfloat(s.polygonOffset.factor), GLfloat(s.polygonOffset.units));
-  enable(GL_STENCIL_TEST, s.stencilTest);
-  const GLenum faces[2] = {GL_FRONT, GL_BACK};
-  for (int f = 0; f < 2; ++f) {
-    const StencilFaceState& st = s.stencil[size_t(f)];
-    gl.stencilFuncSeparate(faces[f], glCompare(st.func), st.ref, st.mask);
-    gl.stencilOpSeparate(faces[f], glStencilOpOf(st.sfail), glStencilOpOf(st.dpfail), glStencilOpOf(st.dppass));
-    gl.stencilMaskSeparate(faces[f], st.writeMask);
-  }
-  enable(GL_BLEND, s.blend.enabled);
-  glBlendFunc(glBlendFactorOf(s.blend.src), glBlendFactorOf(s.blend.dst));
-  glColorMask(s.colorMask[0], s.colorMask[1], s.colorMask[2], s.colorMask[3]);
 }
 
 void color4(GLenum face, GLenum what, const glm::dvec3& c) {
@@ -531,7 +474,7 @@ struct MesaFrameRenderer::Impl {
   // Draws instance i's render mesh (with normals when lit) or its shadow mesh.
   void drawMesh(const MeshBuffers& b, const RenderState& state, const Instance& inst, bool withNormals) {
     RenderState mirrored;
-    applyState(stateFor(state, inst, mirrored), gl);
+    conformance::applyRenderState(stateFor(state, inst, mirrored), gl.stencil);
     gl.bindBuffer(GL_ARRAY_BUFFER, b.positions);
     glVertexPointer(3, GL_FLOAT, 0, nullptr);
     if (withNormals) {
@@ -660,7 +603,7 @@ struct MesaFrameRenderer::Impl {
 
   void drawVolumeParts(const RenderState& state, const Instance& inst) {
     RenderState mirrored;
-    applyState(stateFor(state, inst, mirrored), gl);
+    conformance::applyRenderState(stateFor(state, inst, mirrored), gl.stencil);
     glVertexPointer(4, GL_DOUBLE, 0, volume.positions.data());
     for (VolumePart part : {VolumePart::Side, VolumePart::FrontCap, VolumePart::BackCap}) {
       const std::vector<glm::uvec3>& t = volume.part(part);
@@ -691,7 +634,7 @@ struct MesaFrameRenderer::Impl {
     base.cull = CullMode::Back;
     base.depthTest = true;
     base.depthFunc = CompareFunc::Less;
-    applyState(base, gl);
+    conformance::applyRenderState(base, gl.stencil);
     glClearColor(GLfloat(scene.background.r), GLfloat(scene.background.g), GLfloat(scene.background.b), 1.0f);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -707,7 +650,7 @@ struct MesaFrameRenderer::Impl {
     }
     composite.blend = {true, BlendFactor::One, BlendFactor::One};
     for (const Light& light : lights) {
-      applyState(base, gl);
+      conformance::applyRenderState(base, gl.stencil);
       glClearStencil(0);
       glClear(GL_STENCIL_BUFFER_BIT);
       drawVolumePass(base, light);
@@ -729,7 +672,7 @@ struct MesaFrameRenderer::Impl {
     map.polygonOffset = {scene.shadow.offsetFactor != 0.0 || scene.shadow.offsetUnits != 0.0, scene.shadow.offsetFactor,
                          scene.shadow.offsetUnits};
     gl.bindFramebuffer(GL_FRAMEBUFFER, mapFramebuffer);
-    applyState(map, gl);
+    conformance::applyRenderState(map, gl.stencil);
     glClearDepth(1.0);
     glClear(GL_DEPTH_BUFFER_BIT);
     loadMatrix(GL_PROJECTION, lv.projection);
@@ -750,7 +693,7 @@ struct MesaFrameRenderer::Impl {
     camera.cull = CullMode::Back;
     camera.depthTest = true;
     camera.depthFunc = CompareFunc::Less;
-    applyState(camera, gl);
+    conformance::applyRenderState(camera, gl.stencil);
     glClearColor(GLfloat(scene.background.r), GLfloat(scene.background.g), GLfloat(scene.background.b), 1.0f);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

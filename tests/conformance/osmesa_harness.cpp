@@ -1,4 +1,5 @@
 #include "conformance/osmesa_harness.h"
+#include "conformance/gl_state.h"
 
 #include <GL/osmesa.h>
 
@@ -11,21 +12,6 @@ namespace shadowref::conformance {
 
 namespace {
 
-// GL 1.2+ entry points are loaded through OSMesaGetProcAddress rather than relying on exported
-// prototypes (gl.h declares only GL 1.1 without GL_GLEXT_PROTOTYPES).
-struct GlExtensions {
-  PFNGLSTENCILFUNCSEPARATEPROC stencilFuncSeparate = nullptr;
-  PFNGLSTENCILOPSEPARATEPROC stencilOpSeparate = nullptr;
-  PFNGLSTENCILMASKSEPARATEPROC stencilMaskSeparate = nullptr;
-};
-
-template <class Fn>
-Fn load(const char* name) {
-  auto fn = reinterpret_cast<Fn>(OSMesaGetProcAddress(name));
-  if (!fn) throw std::runtime_error(std::string("OSMesa lacks ") + name);
-  return fn;
-}
-
 // One context per size, made current for each scenario; created lazily and kept for the process.
 class MesaContext {
  public:
@@ -33,9 +19,7 @@ class MesaContext {
     context_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 16, nullptr);
     if (!context_) throw std::runtime_error("OSMesaCreateContextExt failed");
     makeCurrent();
-    gl_.stencilFuncSeparate = load<PFNGLSTENCILFUNCSEPARATEPROC>("glStencilFuncSeparate");
-    gl_.stencilOpSeparate = load<PFNGLSTENCILOPSEPARATEPROC>("glStencilOpSeparate");
-    gl_.stencilMaskSeparate = load<PFNGLSTENCILMASKSEPARATEPROC>("glStencilMaskSeparate");
+    gl_ = GlStencilFunctions::load();
     GLint depthBits = 0, stencilBits = 0, accumBits = 0;
     glGetIntegerv(GL_DEPTH_BITS, &depthBits);
     glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
@@ -51,13 +35,13 @@ class MesaContext {
     if (!OSMesaMakeCurrent(context_, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_))
       throw std::runtime_error("OSMesaMakeCurrent failed");
   }
-  const GlExtensions& gl() const { return gl_; }
+  const GlStencilFunctions& gl() const { return gl_; }
 
  private:
   int width_, height_;
   std::vector<unsigned char> pixels_;
   OSMesaContext context_ = nullptr;
-  GlExtensions gl_;
+  GlStencilFunctions gl_;
 };
 
 MesaContext& contextFor(int width, int height) {
@@ -68,99 +52,8 @@ MesaContext& contextFor(int width, int height) {
   return *slot;
 }
 
-GLenum glCompare(CompareFunc f) {
-  switch (f) {
-    case CompareFunc::Never: return GL_NEVER;
-    case CompareFunc::Less: return GL_LESS;
-    case CompareFunc::Equal: return GL_EQUAL;
-    case CompareFunc::LEqual: return GL_LEQUAL;
-    case CompareFunc::Greater: return GL_GREATER;
-    case CompareFunc::NotEqual: return GL_NOTEQUAL;
-    case CompareFunc::GEqual: return GL_GEQUAL;
-    case CompareFunc::Always: return GL_ALWAYS;
-  }
-  throw std::logic_error("bad CompareFunc");
-}
-
-GLenum glStencilOpOf(StencilOp op) {
-  switch (op) {
-    case StencilOp::Keep: return GL_KEEP;
-    case StencilOp::Zero: return GL_ZERO;
-    case StencilOp::Replace: return GL_REPLACE;
-    case StencilOp::Incr: return GL_INCR;
-    case StencilOp::Decr: return GL_DECR;
-    case StencilOp::Invert: return GL_INVERT;
-    case StencilOp::IncrWrap: return GL_INCR_WRAP;
-    case StencilOp::DecrWrap: return GL_DECR_WRAP;
-  }
-  throw std::logic_error("bad StencilOp");
-}
-
-GLenum glBlendFactorOf(BlendFactor f) {
-  switch (f) {
-    case BlendFactor::Zero: return GL_ZERO;
-    case BlendFactor::One: return GL_ONE;
-    case BlendFactor::SrcColor: return GL_SRC_COLOR;
-    case BlendFactor::OneMinusSrcColor: return GL_ONE_MINUS_SRC_COLOR;
-    case BlendFactor::DstColor: return GL_DST_COLOR;
-    case BlendFactor::OneMinusDstColor: return GL_ONE_MINUS_DST_COLOR;
-    case BlendFactor::SrcAlpha: return GL_SRC_ALPHA;
-    case BlendFactor::OneMinusSrcAlpha: return GL_ONE_MINUS_SRC_ALPHA;
-    case BlendFactor::DstAlpha: return GL_DST_ALPHA;
-    case BlendFactor::OneMinusDstAlpha: return GL_ONE_MINUS_DST_ALPHA;
-  }
-  throw std::logic_error("bad BlendFactor");
-}
-
-GLenum glAccumOpOf(AccumOp op) {
-  switch (op) {
-    case AccumOp::Accum: return GL_ACCUM;
-    case AccumOp::Load: return GL_LOAD;
-    case AccumOp::Return: return GL_RETURN;
-    case AccumOp::Mult: return GL_MULT;
-    case AccumOp::Add: return GL_ADD;
-  }
-  throw std::logic_error("bad AccumOp");
-}
-
-void enable(GLenum cap, bool on) { on ? glEnable(cap) : glDisable(cap); }
-
-// Every field of RenderState, as GL state. RenderState::clipFar has no GL counterpart (GL always
-// clips at the far plane unless depth clamp is on); cases with clipFar off are built so that
-// nothing lies beyond the far plane.
-void applyState(const RenderState& s, const GlExtensions& gl) {
-  glViewport(s.viewport.x, s.viewport.y, s.viewport.width, s.viewport.height);
-  glDepthRange(s.viewport.nearVal, s.viewport.farVal);
-  enable(GL_SCISSOR_TEST, s.scissorTest);
-  glScissor(s.scissor.x, s.scissor.y, s.scissor.width, s.scissor.height);
-
-  enable(GL_CULL_FACE, s.cull != CullMode::None);
-  glCullFace(s.cull == CullMode::Front ? GL_FRONT : s.cull == CullMode::Back ? GL_BACK : GL_FRONT_AND_BACK);
-  glFrontFace(s.frontFace == FrontFace::CCW ? GL_CCW : GL_CW);
-
-  enable(GL_DEPTH_TEST, s.depthTest);
-  glDepthFunc(glCompare(s.depthFunc));
-  glDepthMask(s.depthWrite ? GL_TRUE : GL_FALSE);
-  enable(GL_DEPTH_CLAMP, s.depthClamp);
-  enable(GL_POLYGON_OFFSET_FILL, s.polygonOffset.enabled);
-  glPolygonOffset(GLfloat(s.polygonOffset.factor), GLfloat(s.polygonOffset.units));
-
-  enable(GL_STENCIL_TEST, s.stencilTest);
-  const GLenum faces[2] = {GL_FRONT, GL_BACK};
-  for (int f = 0; f < 2; ++f) {
-    const StencilFaceState& st = s.stencil[f];
-    gl.stencilFuncSeparate(faces[f], glCompare(st.func), st.ref, st.mask);
-    gl.stencilOpSeparate(faces[f], glStencilOpOf(st.sfail), glStencilOpOf(st.dpfail), glStencilOpOf(st.dppass));
-    gl.stencilMaskSeparate(faces[f], st.writeMask);
-  }
-
-  enable(GL_BLEND, s.blend.enabled);
-  glBlendFunc(glBlendFactorOf(s.blend.src), glBlendFactorOf(s.blend.dst));
-  glColorMask(s.colorMask[0], s.colorMask[1], s.colorMask[2], s.colorMask[3]);
-}
-
-void execute(const DrawStep& d, const GlExtensions& gl) {
-  applyState(d.state, gl);
+void execute(const DrawStep& d, const GlStencilFunctions& gl) {
+  applyRenderState(d.state, gl);
   glBegin(GL_TRIANGLES);
   for (const ColoredVertex& v : d.vertices) {
     glColor4d(v.color.r, v.color.g, v.color.b, v.color.a);
@@ -169,8 +62,8 @@ void execute(const DrawStep& d, const GlExtensions& gl) {
   glEnd();
 }
 
-void execute(const ClearStep& c, const GlExtensions& gl) {
-  applyState(c.state, gl);
+void execute(const ClearStep& c, const GlStencilFunctions& gl) {
+  applyRenderState(c.state, gl);
   glClearColor(c.colorValue.r, c.colorValue.g, c.colorValue.b, c.colorValue.a);
   glClearDepth(c.depthValue);
   glClearStencil(c.stencilValue);
@@ -183,8 +76,8 @@ void execute(const ClearStep& c, const GlExtensions& gl) {
   glClear(bits);
 }
 
-void execute(const AccumStep& a, const GlExtensions& gl) {
-  applyState(a.state, gl);
+void execute(const AccumStep& a, const GlStencilFunctions& gl) {
+  applyRenderState(a.state, gl);
   glAccum(glAccumOpOf(a.op), a.value);
 }
 
