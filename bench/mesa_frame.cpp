@@ -20,6 +20,7 @@
 #include "shadow/shadow_volume.h"
 #include "shadow/soft_lights.h"
 #include "shadow/stencil_counting.h"
+#include "shadow/volume_renderer.h"
 
 namespace shadowref::bench {
 
@@ -371,16 +372,6 @@ MeshBuffers upload(const GlFunctions& gl, const Mesh& mesh, bool withNormals) {
   return b;
 }
 
-Aabb sceneBounds(const std::vector<Instance>& instances) {
-  Aabb box;
-  for (const Instance& inst : instances) {
-    if (inst.worldBounds.empty()) continue;
-    box.add(inst.worldBounds.min);
-    box.add(inst.worldBounds.max);
-  }
-  return box;
-}
-
 }  // namespace
 
 struct MesaFrameRenderer::Impl {
@@ -628,12 +619,7 @@ struct MesaFrameRenderer::Impl {
 
   void renderVolumes() {
     loadMatrix(GL_PROJECTION, view.projection);
-    RenderState base;
-    base.viewport = view.viewport;
-    base.clipFar = false;
-    base.cull = CullMode::Back;
-    base.depthTest = true;
-    base.depthFunc = CompareFunc::Less;
+    const RenderState base = volumeBaseState(view);
     conformance::applyRenderState(base, gl.stencil);
     glClearColor(GLfloat(scene.background.r), GLfloat(scene.background.g), GLfloat(scene.background.b), 1.0f);
     glClearDepth(1.0);
@@ -660,7 +646,7 @@ struct MesaFrameRenderer::Impl {
 
   void renderShadowMap() {
     const Light& light = lights.front();
-    const LightView lv = shadowLightView(light, sceneBounds(instances));
+    const LightView lv = shadowLightView(light, worldBounds(instances));
     const int size = scene.shadow.mapSize;
     // Step 1: depth from the light (shadow_map_renderer.cpp renderDepthMap).
     RenderState map;

@@ -42,6 +42,16 @@ void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, con
 
 }  // namespace
 
+Aabb worldBounds(const std::vector<Instance>& instances) {
+  Aabb box;
+  for (const Instance& inst : instances) {
+    if (inst.worldBounds.empty()) continue;
+    box.add(inst.worldBounds.min);
+    box.add(inst.worldBounds.max);
+  }
+  return box;
+}
+
 std::vector<Instance> Scene::instances() const {
   std::vector<Instance> out;
   for (const Node& root : roots) flatten(*this, root, glm::dmat4(1.0), "", out);

@@ -130,4 +130,7 @@ struct Scene {
   std::vector<Instance> instances() const;  // depth-first, children after their parent
 };
 
+// The world bounds of every instance together (instances without bounds add nothing).
+Aabb worldBounds(const std::vector<Instance>& instances);
+
 }  // namespace shadowref

@@ -126,16 +126,6 @@ void LightShadow::factors(const double* x, const double* y, const double* z, int
     if (!((views[0].projection * (views[0].view * glm::dvec4(x[k], y[k], z[k], 1.0))).w > 0.0)) out[k] = 1.0;
 }
 
-Aabb sceneBounds(const std::vector<Instance>& instances) {
-  Aabb box;
-  for (const Instance& inst : instances) {
-    if (inst.worldBounds.empty()) continue;
-    box.add(inst.worldBounds.min);
-    box.add(inst.worldBounds.max);
-  }
-  return box;
-}
-
 DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& instances, const Light& light,
                             const glm::dmat4& view, const glm::dmat4& projection, int threads, RasterStats& stats,
                             double clipNear, bool depthClamp) {
@@ -204,7 +194,7 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
                                               int threads, RasterStats& stats) {
   auto ls = std::make_unique<LightShadow>();
   ls->light = light;
-  const Aabb bounds = sceneBounds(instances);
+  const Aabb bounds = worldBounds(instances);
   if (light.type == LightType::Point) {
     // Beyond the documents: six perspective maps, one per cube face.
     ls->cube = true;

@@ -170,6 +170,16 @@ std::string lightNote(size_t index, const Light& light, const LightTotals& t, co
 
 }  // namespace
 
+RenderState volumeBaseState(const SceneView& view) {
+  RenderState base;
+  base.viewport = view.viewport;
+  base.clipFar = false;
+  base.cull = CullMode::Back;
+  base.depthTest = true;
+  base.depthFunc = CompareFunc::Less;
+  return base;
+}
+
 void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
                          Renderer& renderer) {
   // Volumes reach infinity: P_inf, no far clipping (000 §3.3).
@@ -186,12 +196,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
     if (options.onPass) options.onPass(name, fb);
   };
 
-  RenderState base;
-  base.viewport = view.viewport;
-  base.clipFar = false;
-  base.cull = CullMode::Back;
-  base.depthTest = true;
-  base.depthFunc = CompareFunc::Less;
+  const RenderState base = volumeBaseState(view);
 
   std::vector<Light> lights;  // soft lights expanded (000 §3.6)
   for (const Light& light : scene.lights)

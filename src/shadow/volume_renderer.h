@@ -10,8 +10,13 @@
 #include "raster/renderer.h"
 #include "scene/scene.h"
 #include "shadow/frame_renderer.h"
+#include "shadow/scene_view.h"
 
 namespace shadowref {
+
+// The state every pass of renderShadowVolumes starts from: the camera's viewport under P_inf,
+// without far clipping (the volumes reach infinity, 000 §3.3), back faces culled, depth LESS.
+RenderState volumeBaseState(const SceneView& view);
 
 void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
                          Renderer& renderer);

@@ -214,3 +214,15 @@ TEST_CASE("a glTF mesh is read from its path and welded", "[loader]") {
   CHECK(s.meshes[0]->weldedPositions.size() == 4);
   CHECK(s.meshes[0]->topology == Topology::Closed);
 }
+
+TEST_CASE("the world bounds of instances are their boxes together; an instance without bounds adds nothing", "[loader]") {
+  std::vector<Instance> instances(3);
+  instances[0].worldBounds.add({-1.0, 0.0, 2.0});
+  instances[0].worldBounds.add({1.0, 3.0, 4.0});
+  instances[2].worldBounds.add({0.5, -2.0, -5.0});  // a single point
+  // instances[1] has none (empty)
+  const Aabb box = worldBounds(instances);
+  CHECK(box.min == glm::dvec3(-1.0, -2.0, -5.0));
+  CHECK(box.max == glm::dvec3(1.0, 3.0, 4.0));
+  CHECK(worldBounds({}).empty());
+}

@@ -31,6 +31,7 @@
 #include "shadow/shadow_volume.h"
 #include "shadow/soft_lights.h"
 #include "shadow/stencil_counting.h"
+#include "shadow/volume_renderer.h"
 
 using namespace shadowref;
 
@@ -94,16 +95,6 @@ std::vector<ClipVolume> clipVolumes(const Scene& scene, const std::vector<Prepar
   return out;
 }
 
-// The state the volume renderer starts from (volume_renderer.cpp: P_inf viewport, no far clip).
-RenderState baseState(const SceneView& view) {
-  RenderState base;
-  base.viewport = view.viewport;
-  base.clipFar = false;
-  base.cull = CullMode::Back;
-  base.depthTest = true;
-  base.depthFunc = CompareFunc::Less;
-  return base;
-}
 
 // Depth test off, INCR_WRAP on back faces, DECR_WRAP on front faces: B − F at every pixel.
 RenderState backMinusFrontState(const RenderState& base) {
@@ -189,7 +180,7 @@ TEST_CASE("invariant: z-fail = z-pass + (back - front fragments, depth ignored) 
     const SceneView view = makeCameraView(scene, true);
     const std::vector<Instance> instances = scene.instances();
     const std::vector<PreparedInstance> prepared = prepareInstances(instances, view);
-    const RenderState base = baseState(view);
+    const RenderState base = volumeBaseState(view);
     const std::vector<Light> lights = drawnLights(scene);
     REQUIRE(frame.stencilPerLight.size() == lights.size());
     for (size_t l = 0; l < lights.size(); ++l) {
@@ -223,7 +214,7 @@ TEST_CASE("invariant: the silhouette volume counts exactly like the per-triangle
     const SceneView view = makeCameraView(scene, true);
     const std::vector<Instance> instances = scene.instances();
     const std::vector<PreparedInstance> prepared = prepareInstances(instances, view);
-    const RenderState base = baseState(view);
+    const RenderState base = volumeBaseState(view);
     for (const Light& light : drawnLights(scene)) {
       INFO(file << " light '" << light.name << "'");
       // z-pass draws the sides only, z-fail the capped volumes: each as the renderer would.
