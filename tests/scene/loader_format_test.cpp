@@ -215,7 +215,7 @@ TEST_CASE("a glTF mesh is read from its path and welded", "[loader]") {
   CHECK(s.meshes[0]->topology == Topology::Closed);
 }
 
-TEST_CASE("the world bounds of instances are their boxes together; an instance without bounds adds nothing", "[loader]") {
+TEST_CASE("the world bounds of instances are their boxes together, and an instance without bounds adds nothing", "[loader]") {
   std::vector<Instance> instances(3);
   instances[0].worldBounds.add({-1.0, 0.0, 2.0});
   instances[0].worldBounds.add({1.0, 3.0, 4.0});
