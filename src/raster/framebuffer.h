@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "raster/construct_later.h"
+#include "raster/huge_page_allocator.h"
 
 namespace shadowref {
 
@@ -46,9 +47,10 @@ struct DepthCodec {
   double resolvableDifference(double zMax) const;
 };
 
-// A buffer's pixels.
+// A buffer's pixels: made unwritten (ConstructLaterAllocator), in huge pages when large
+// (HugePageAllocator: the colour, depth and accumulation buffers of a frame, a shadow map).
 template <class T>
-using PixelVector = std::vector<T, ConstructLaterAllocator<T>>;
+using PixelVector = std::vector<T, ConstructLaterAllocator<T, HugePageAllocator<T>>>;
 
 class Framebuffer {
  public:
