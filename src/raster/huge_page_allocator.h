@@ -1,13 +1,11 @@
-// An allocator that asks the kernel to back large buffers with 2 MB pages. A frame's pixel
-// buffers are megabytes each (an 800x640 float RGBA colour buffer 8 MB, a 2048² shadow map 16 MB)
-// and are read all over: in 4 KB pages the address translations miss the TLB — each shadow
-// lookup lands on another page of the map — and one-thread frames measured 2-4 % slower (the
-// outdoor scene 4 %). Blocks of at least kHugePageBlock bytes are aligned to 2 MB and advised
-// MADV_HUGEPAGE (honoured where the kernel's transparent huge pages are "always" or "madvise";
-// elsewhere, and off Linux, they are plain blocks); smaller ones come from std::allocator.
-// Nothing about the bytes a frame computes changes. Only the pixel buffers use it (PixelVector):
-// with the setups and vertices the threads make per pass in huge pages as well, two threads
-// measured 15-60 % slower.
+// An allocator that asks the kernel to back large buffers with 2 MB pages. A frame's buffers are
+// megabytes each (an 800x640 float RGBA colour buffer 8 MB, a 2048² shadow map 16 MB) and are
+// read and written all over: in 4 KB pages the address translations alone miss the TLB — a
+// shadow lookup per fragment lands on a different page of the map, a lit pass walks the colour
+// buffer row by row — and the frames measured 3-5 % slower. Blocks of at least kHugePageBlock
+// bytes are aligned to 2 MB and advised MADV_HUGEPAGE (honoured where the kernel's transparent
+// huge pages are "always" or "madvise"; elsewhere, and off Linux, they are plain blocks).
+// Smaller ones come from std::allocator. Nothing about the bytes a frame computes changes.
 #pragma once
 
 #include <cstddef>
