@@ -5,7 +5,6 @@
 // leave it as allocated. The element types are implicit-lifetime (trivial, or aggregates), so
 // their objects exist from allocation; whoever makes an element writes all of it before anything
 // reads it. Everything else (assign, resize with a value, copies) works as with std::allocator.
-// The memory comes from Base (the pixel buffers': HugePageAllocator).
 #pragma once
 
 #include <memory>
@@ -14,12 +13,12 @@
 
 namespace shadowref {
 
-template <class T, class Base = std::allocator<T>>
-struct ConstructLaterAllocator : Base {
-  using Base::Base;
+template <class T>
+struct ConstructLaterAllocator : std::allocator<T> {
+  using std::allocator<T>::allocator;
   template <class U>
   struct rebind {
-    using other = ConstructLaterAllocator<U, typename std::allocator_traits<Base>::template rebind_alloc<U>>;
+    using other = ConstructLaterAllocator<U>;
   };
   template <class U>
   void construct(U*) noexcept {}

@@ -16,7 +16,6 @@
 #include <glm/glm.hpp>
 
 #include "raster/construct_later.h"
-#include "raster/huge_page_allocator.h"
 
 namespace shadowref {
 
@@ -47,10 +46,9 @@ struct DepthCodec {
   double resolvableDifference(double zMax) const;
 };
 
-// A buffer's pixels: made unwritten (ConstructLaterAllocator), in huge pages when large
-// (HugePageAllocator: the colour, depth and accumulation buffers of a frame, a shadow map).
+// A buffer's pixels.
 template <class T>
-using PixelVector = std::vector<T, ConstructLaterAllocator<T, HugePageAllocator<T>>>;
+using PixelVector = std::vector<T, ConstructLaterAllocator<T>>;
 
 class Framebuffer {
  public:
