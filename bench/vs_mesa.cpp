@@ -17,7 +17,9 @@
 // (share of pixels more than 2/255 apart, mean difference) is the last table of a whole run: it is
 // what shows the pairs like for like. --agreement prints only that table, --images DIR keeps its
 // frames as PNG. Two threads are set against the machine's capacity for two busy threads: the
-// 1-thread frame rendered by two processes at once, in the same alternating rounds.
+// 1-thread frame rendered by two processes at once, in the same alternating rounds; and against
+// the time a cache line takes between the cores, measured before every 2-thread run. A run ends
+// with issue 7's targets checked against its own figures (issue_targets.h).
 //
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]
 //   vs_mesa --agreement [--images DIR]
