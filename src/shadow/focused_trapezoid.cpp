@@ -37,13 +37,7 @@ Trapezoid focusedTrapezoid(const std::array<glm::dvec4, 8>& frustumClip, const g
   }
   // 2. The centre line: the view axis.
   const glm::dvec2 nearCentre = projectXY(axisNearClip), farCentre = projectXY(axisFarClip);
-  double extent = 0.0;
-  for (const glm::dvec2& q : p) extent = std::max(extent, glm::length(q - nearCentre));
-  if (degenerate || !(glm::length(farCentre - nearCentre) > 1e-12 * extent)) {
-    Trapezoid tz = boundingRectangle(p);
-    tz.nearCentre = nearCentre, tz.farCentre = farCentre;
-    return tz;
-  }
+  if (auto fallback = centreLineFallback(p, nearCentre, farCentre, degenerate)) return *fallback;
 
   Trapezoid tz;
   tz.nearCentre = nearCentre;

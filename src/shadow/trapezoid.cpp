@@ -92,6 +92,17 @@ Trapezoid boundingRectangle(std::span<const glm::dvec2> points) {
   return tz;
 }
 
+std::optional<Trapezoid> centreLineFallback(std::span<const glm::dvec2> points, const glm::dvec2& nearCentre,
+                                            const glm::dvec2& farCentre, bool degenerate) {
+  double extent = 0.0;
+  for (const glm::dvec2& q : points) extent = std::max(extent, glm::length(q - nearCentre));
+  if (!degenerate && glm::length(farCentre - nearCentre) > 1e-12 * extent) return std::nullopt;
+  Trapezoid tz = boundingRectangle(points);
+  tz.nearCentre = nearCentre;
+  tz.farCentre = farCentre;
+  return tz;
+}
+
 Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& clip, double focusRegion) {
   for (const glm::dvec4& c : clip)
     if (!(c.w > 0.0)) {
@@ -110,13 +121,7 @@ Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& clip, double focusRe
   const glm::dvec4 nearClip = meanOf(clip, 0), farClip = meanOf(clip, 4);
   const glm::dvec2 nearCentre = projectXY(nearClip), farCentre = projectXY(farClip);
 
-  double extent = 0.0;
-  for (const glm::dvec2& q : p) extent = std::max(extent, glm::length(q - nearCentre));
-  if (nearPlaneInsideFarPlane(p) || !(glm::length(farCentre - nearCentre) > 1e-12 * extent)) {
-    Trapezoid tz = boundingRectangle(p);
-    tz.nearCentre = nearCentre, tz.farCentre = farCentre;
-    return tz;
-  }
+  if (auto fallback = centreLineFallback(p, nearCentre, farCentre, nearPlaneInsideFarPlane(p))) return *fallback;
 
   Trapezoid tz;
   tz.nearCentre = nearCentre;

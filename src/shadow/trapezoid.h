@@ -50,6 +50,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <span>
 
 #include <glm/glm.hpp>
@@ -108,6 +109,12 @@ Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& frustumCornersLightC
 // [−1, 1]² (nothing outside it is in the map anyway; the whole view when nothing of it is left),
 // as a trapezoid with `fallback` set. Shared by computeTrapezoid and focusedTrapezoid.
 Trapezoid boundingRectangle(std::span<const glm::dvec2> points);
+
+// Step 2's way out, shared by computeTrapezoid and focusedTrapezoid: for a degenerate frustum, or
+// a centre line whose ends coincide up to rounding (shorter than 1e-12 of the points' extent
+// around nearCentre), the bounding rectangle with the centres kept; otherwise nothing.
+std::optional<Trapezoid> centreLineFallback(std::span<const glm::dvec2> points, const glm::dvec2& nearCentre,
+                                            const glm::dvec2& farCentre, bool degenerate);
 
 // Steps 5 and 6 of 002 §4.1.2, shared by computeTrapezoid and focusedTrapezoid. The frame: the
 // centre line from `nearCentre` along the unit vector d, its unit normal n, the top line at
