@@ -251,21 +251,38 @@ struct RowDepth {
     }
     return out;
   }
-  // The codes of the eight pixels from column x. With AVX-512 a float buffer's eight depths are
-  // one vector of eight doubles; otherwise two halves of four (GCC 12 lowers a vector of eight
-  // doubles lane by lane for AVX2).
-  v8u codes8(int x) const {
+  // The x of eight pixel centres, kept from step to step of a row: x + 0.5 … x + 7.5, and 8 more
+  // a step, are whole numbers and halves, exact in a double, so stepping gives the bits
+  // double(x) + 0.5 gives (and saves a conversion and a broadcast a step). With AVX-512 a float
+  // buffer's eight depths are one vector of eight doubles; otherwise two halves of four (GCC 12
+  // lowers a vector of eight doubles lane by lane for AVX2).
+#if defined(__AVX512F__)
+  using Centres = ClampLanes8;
+  static Centres centres(int x) { return double(x) + Centres{0.5, 1.5, 2.5, 3.5, 4.5, 5.5, 6.5, 7.5}; }
+  static Centres nextStep(Centres c) { return c + 8.0; }
+#else
+  struct Centres {
+    v4d low, high;
+  };
+  static Centres centres(int x) {
+    const v4d low = double(x) + v4d{0.5, 1.5, 2.5, 3.5};
+    return {low, low + 4.0};
+  }
+  static Centres nextStep(Centres c) { return {c.low + 8.0, c.high + 8.0}; }
+#endif
+  // The codes of the eight pixels whose centres are c.
+  v8u codes8(Centres c) const {
 #if defined(__AVX512F__)
     if constexpr (kPlainFloat) {
-      using v8d = ClampLanes8;
-      const v8d cx = double(x) + v8d{0.5, 1.5, 2.5, 3.5, 4.5, 5.5, 6.5, 7.5};  // exact
-      v8d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
+      ClampLanes8 z = (z0 + (dzdx * (c - fx0) + rowPart)) + offset;
       if constexpr (K == RowKind::PlainFloat) z = clampUnitOrZero(z);  // encode's clamp
       return std::bit_cast<v8u>(__builtin_convertvector(z, v8f));
     }
+    const v4d low = {c[0], c[1], c[2], c[3]}, high = {c[4], c[5], c[6], c[7]};
+    const v4u a = codes4(low), b = codes4(high);
+#else
+    const v4u a = codes4(c.low), b = codes4(c.high);
 #endif
-    const v4d cx = double(x) + v4d{0.5, 1.5, 2.5, 3.5};  // exact: whole numbers + 0.5
-    const v4u a = codes4(cx), b = codes4(cx + 4.0);
 #if defined(__AVX__)
     // One insert; the generic shuffle below adds a register move per half.
     return std::bit_cast<v8u>(_mm256_setr_m128i(std::bit_cast<__m128i>(a), std::bit_cast<__m128i>(b)));
@@ -273,6 +290,8 @@ struct RowDepth {
     return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
 #endif
   }
+  // The codes of the eight pixels from column x.
+  v8u codes8(int x) const { return codes8(centres(x)); }
   uint32_t code(int x) const {
     double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
     if (!kPlainFloat && clamp) z = std::clamp(z, lo, hi);
@@ -396,6 +415,22 @@ inline v8u liveLanes(int first, int lo, int hi) {
 // narrower than eight pixels has no such window; its rows go pixel by pixel, single(at, code,
 // pass). Counts the fragments and the failed depth tests. F = Always (no depth test) reads no
 // depth but the dead lanes', and none without a depth buffer (where block writes no depth).
+// One step of depthTestRows: the eight pixels of a row from column x (stored: the row's depth
+// codes), `live` the lanes to test; returns the lanes that pass. Whole: every lane live. Without a
+// depth test a step with dead lanes still reads the depths (block may store them back), where the
+// framebuffer has a depth buffer at all.
+template <CompareFunc F, bool Whole, RowKind K, class Block>
+inline v8u depthStep(const RowDepth<K>& row, const uint32_t* stored, bool hasDepth, size_t rowStart, int x,
+                     typename RowDepth<K>::Centres centres, v8u live, const Block& block) {
+  v8u before{};
+  if constexpr (F != CompareFunc::Always) std::memcpy(&before, stored + x, sizeof before);
+  else if (!Whole && hasDepth) std::memcpy(&before, stored + x, sizeof before);
+  const v8u codes = row.codes8(centres);
+  const v8u pass = codesPass<F>(codes, before) & live;
+  block(rowStart + size_t(x), codes, before, live, pass);
+  return pass;
+}
+
 template <CompareFunc F, RowKind K, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
                    uint64_t& fragments, uint64_t& failed, const Block& block, const Single& single) {
@@ -404,6 +439,18 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   const int width = fb.width();
   uint64_t rowsFragments = 0, rowsPassed = 0;  // locals: the loops keep them in registers
   v8u passed8{};  // passed tests per lane, summed once per triangle rather than per row
+  if (isNarrow(t, region, width)) {
+    v8u live8{};  // covered pixels per lane
+    rasterizeNarrowRows(t, region, width, [&, depth, hasDepth, width](int y, int window, NarrowLanes covered) {
+      const size_t rowStart = size_t(y) * size_t(width);
+      const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
+      const Block rowBlock = block;  // a copy: see below
+      const v8u live = (v8u)covered;
+      passed8 -= depthStep<F, false>(row, depth + rowStart, hasDepth, rowStart, window, row.centres(window), live, rowBlock);
+      live8 -= live;
+    });
+    for (int lane = 0; lane < 8; ++lane) rowsFragments += uint64_t(live8[lane]);
+  } else {
   rasterizeRowSpans(t, region, [&, depth, hasDepth, width](int y, int xl, int xr) {
     const size_t rowStart = size_t(y) * size_t(width);
     const int n = xr - xl + 1;
@@ -414,22 +461,14 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     const Block rowBlock = block;
     const Single rowSingle = single;
     v8u rowPassed8{};  // in a register through the row; the triangle's sum is in memory
-    // whole: every lane live. Without a depth test a step with dead lanes still reads the depths
-    // (block may store them back), where the framebuffer has a depth buffer at all.
-    auto step = [&](int x, v8u live, auto whole) {
-      v8u before{};
-      if constexpr (F != CompareFunc::Always) std::memcpy(&before, stored + x, sizeof before);
-      else if (!decltype(whole)::value && hasDepth) std::memcpy(&before, stored + x, sizeof before);
-      const v8u codes = row.codes8(x);
-      const v8u pass = codesPass<F>(codes, before) & live;
-      rowPassed8 -= pass;  // a passing lane is all ones: minus one
-      rowBlock(rowStart + size_t(x), codes, before, live, pass);
-    };
     int x = xl;
-    for (; x + 8 <= xr + 1; x += 8) step(x, ~v8u{}, std::true_type{});
+    auto centres = row.centres(x);
+    for (; x + 8 <= xr + 1; x += 8, centres = row.nextStep(centres))  // a passing lane is -1
+      rowPassed8 -= depthStep<F, true>(row, stored, hasDepth, rowStart, x, centres, ~v8u{}, rowBlock);
     if (x <= xr && width >= 8) {
       const int first = std::min(x, width - 8);
-      step(first, liveLanes(first, x, xr), std::false_type{});
+      rowPassed8 -= depthStep<F, false>(row, stored, hasDepth, rowStart, first, row.centres(first),
+                                        liveLanes(first, x, xr), rowBlock);
     } else {
       for (; x <= xr; ++x) {
         const uint32_t code = row.code(x);
@@ -441,6 +480,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     passed8 += rowPassed8;
     rowsFragments += uint64_t(n);
   });
+  }
   for (int lane = 0; lane < 8; ++lane) rowsPassed += uint64_t(passed8[lane]);
   fragments += rowsFragments;
   failed += rowsFragments - rowsPassed;

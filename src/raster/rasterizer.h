@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 
 #include "raster/render_state.h"
 #include "raster/triangle_setup.h"
@@ -178,6 +179,49 @@ void rasterizeSpans(const TriangleSetup& t, const Rect& region, SpanSink&& sink)
 template <class SpanSink>
 void rasterizeRowSpans(const TriangleSetup& t, const Rect& region, SpanSink&& sink) {
   detail::spans<false>(t, region, sink);
+}
+
+// A third form of the same coverage, for narrow triangles: those whose columns inside the region
+// fit in one window of kNarrowColumns. Their rows hold a few pixels each, and solving each row's
+// ends (three EdgeLimit steps, then a loop whose length changes from row to row) costs more than
+// testing the whole window at once. Lane k of a row is column window + k; it is covered when its
+// three biased edge values are >= 0 — rasterizeTriangle's test, exact in integers, so the lanes
+// are exactly the pixels rasterizeSpans gives — and its column is inside the triangle's columns
+// in the region. The window starts at the triangle's first column, or ends at the buffer's last
+// column where the buffer ends sooner.
+inline constexpr int kNarrowColumns = 8;
+using NarrowLanes = int32_t __attribute__((vector_size(4 * kNarrowColumns)));  // all ones: covered
+
+// Whether rasterizeNarrowRows takes the triangle: its columns in the region fit in a window, and
+// the buffer is at least a window wide.
+inline bool isNarrow(const TriangleSetup& t, const Rect& region, int bufferWidth) {
+  const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
+  return x1 - x0 < kNarrowColumns && bufferWidth >= kNarrowColumns;
+}
+
+// Sink: void(int y, int window, NarrowLanes covered) for each row with a covered pixel, bottom to
+// top. Requires isNarrow(t, region, bufferWidth).
+template <class RowSink>
+void rasterizeNarrowRows(const TriangleSetup& t, const Rect& region, int bufferWidth, RowSink&& sink) {
+  using Edges = int64_t __attribute__((vector_size(8 * kNarrowColumns)));
+  const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
+  const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
+  if (x0 > x1 || y0 > y1) return;
+  const int window = std::min(x0, bufferWidth - kNarrowColumns);
+  const Edges lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  static_assert(kNarrowColumns == 8, "lane lists above and below");
+  const Edges column = window + lane;
+  const Edges inColumns = (column >= x0) & (column <= x1);
+  Edges e[3];
+  for (int i = 0; i < 3; ++i) e[i] = (t.edgeAt(i, window, y0) + t.bias[i]) + t.stepX[i] * lane;
+  for (int y = y0; y <= y1; ++y) {
+    const Edges covered = inColumns & (e[0] >= 0) & (e[1] >= 0) & (e[2] >= 0);
+    const NarrowLanes lanes = __builtin_convertvector(covered, NarrowLanes);
+    uint64_t words[kNarrowColumns / 2];
+    std::memcpy(words, &lanes, sizeof words);
+    if ((words[0] | words[1] | words[2] | words[3]) != 0) sink(y, window, lanes);
+    for (int i = 0; i < 3; ++i) e[i] += t.stepY[i];
+  }
 }
 
 }  // namespace shadowref

@@ -1,6 +1,7 @@
 // Coverage: which pixel centres a triangle owns. Pixel centres are at half-integers; a centre
 // exactly on an edge belongs to the triangle when the edge is a left or a top edge (top-left rule,
 // y up), so triangles sharing an edge cover each centre on it exactly once (watertight).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -325,4 +326,96 @@ TEST_CASE("row spans cover exactly the pixels whose three edge functions pass, f
   }
   CHECK(checked > 2500);
   CHECK(coveredTotal > 100000);  // the triangles really cover something
+}
+
+TEST_CASE("narrow rows cover exactly the pixels whose three edge functions pass, in a window inside the buffer",
+          "[raster][coverage][narrow]") {
+  // The same oracle as the spans' test, for the lane masks of rasterizeNarrowRows: triangles at
+  // most a few pixels wide (slivers, edges through pixel centres, points far outside), regions that
+  // cut wide triangles down to a few columns, and buffers whose last columns force the window to
+  // start left of the triangle.
+  uint64_t state = 0xD1B54A32D192ED03ull;
+  auto next = [&]() {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return state;
+  };
+  RenderState rs;
+  const DepthCodec codec;
+  int checked = 0, coveredTotal = 0, shiftedWindows = 0;
+  for (int n = 0; n < 4000; ++n) {
+    const int bufferWidth = 8 + int(next() % 40);
+    const int left = int(next() % uint64_t(bufferWidth));
+    WindowVertex v[3];
+    const bool cutByRegion = n % 3 == 0;
+    for (WindowVertex& w : v) {
+      const int64_t spread = cutByRegion ? 40 * kSubpixelOne : 9 * kSubpixelOne;
+      w.x = int64_t(left) * kSubpixelOne + int64_t(next() % uint64_t(spread)) - (cutByRegion ? 20 * kSubpixelOne : 0);
+      w.y = int64_t(next() % uint64_t(30 * kSubpixelOne));
+      if (n % 5 == 0) {  // on pixel centres
+        w.x = (w.x / kSubpixelOne) * kSubpixelOne + kSubpixelHalf;
+        w.y = (w.y / kSubpixelOne) * kSubpixelOne + kSubpixelHalf;
+      }
+      w.fx = double(w.x) / kSubpixelOne;
+      w.fy = double(w.y) / kSubpixelOne;
+    }
+    if (n % 7 == 0) v[2].x = v[1].x + (v[1].x - v[0].x) / 97;  // slivers
+    TriangleSetup t;
+    if (!setupTriangle(v[0], v[1], v[2], FrontFacing, rs, codec, t)) continue;
+    const int regionX = cutByRegion ? std::clamp(left + int(next() % 5) - 2, 0, bufferWidth - 1) : 0;
+    const int regionWidth = cutByRegion ? std::min(1 + int(next() % 8), bufferWidth - regionX) : bufferWidth;
+    const Rect region{regionX, 1, regionWidth, 27};
+    if (!isNarrow(t, region, bufferWidth)) continue;
+    std::vector<uint8_t> lanes(size_t(bufferWidth) * 40, 0);
+    bool windowsInside = true, rowsNonEmpty = true, rowsInOrder = true;
+    int lastRow = -1;
+    rasterizeNarrowRows(t, region, bufferWidth, [&](int y, int window, NarrowLanes covered) {
+      windowsInside = windowsInside && window >= 0 && window + kNarrowColumns <= bufferWidth;
+      shiftedWindows += window < std::max(t.minX, region.x);
+      rowsInOrder = rowsInOrder && y > lastRow;
+      lastRow = y;
+      bool any = false;
+      for (int k = 0; k < kNarrowColumns; ++k) {
+        if (covered[k] == 0) continue;
+        any = true;
+        REQUIRE(covered[k] == -1);
+        ++lanes[size_t(y * bufferWidth + window + k)];
+      }
+      rowsNonEmpty = rowsNonEmpty && any;
+    });
+    int wrong = 0;
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < bufferWidth; ++x) {
+        bool inside = y >= region.y && y < region.y + region.height && x >= region.x && x < region.x + region.width;
+        for (int i = 0; i < 3; ++i) inside = inside && t.edgeAt(i, x, y) + t.bias[i] >= 0;
+        wrong += lanes[size_t(y * bufferWidth + x)] != (inside ? 1 : 0);
+        coveredTotal += inside;
+      }
+    INFO("triangle " << n << ": (" << v[0].x << "," << v[0].y << ") (" << v[1].x << "," << v[1].y << ") (" << v[2].x
+                     << "," << v[2].y << "), buffer width " << bufferWidth << ", region x " << region.x << " width "
+                     << region.width);
+    REQUIRE(wrong == 0);
+    REQUIRE(windowsInside);
+    REQUIRE(rowsNonEmpty);
+    REQUIRE(rowsInOrder);
+    ++checked;
+  }
+  CHECK(checked > 2000);
+  CHECK(coveredTotal > 20000);
+  CHECK(shiftedWindows > 50);  // the buffer's right end moved the window often enough to be tested
+}
+
+TEST_CASE("a triangle is narrow when its columns in the region fit in one window of a wide enough buffer",
+          "[raster][coverage][narrow]") {
+  TriangleSetup t;
+  t.minX = 10;
+  t.maxX = 17;  // eight columns
+  t.minY = 0;
+  t.maxY = 5;
+  CHECK(isNarrow(t, Rect{0, 0, 64, 64}, 64));
+  CHECK_FALSE(isNarrow(t, Rect{0, 0, 64, 64}, 7));  // no window of eight columns in the buffer
+  t.maxX = 18;  // nine columns
+  CHECK_FALSE(isNarrow(t, Rect{0, 0, 64, 64}, 64));
+  CHECK(isNarrow(t, Rect{12, 0, 4, 64}, 64));  // the region leaves four of them
 }
