@@ -101,14 +101,6 @@ bool isCulled(Facing facing, CullMode cull) {
   return false;
 }
 
-int64_t TriangleSetup::edgeAt(int i, int px, int py) const {
-  const WindowVertex& a = v[(i + 1) % 3];
-  const WindowVertex& b = v[(i + 2) % 3];
-  const int64_t sx = int64_t(px) * kSubpixelOne + kSubpixelHalf;
-  const int64_t sy = int64_t(py) * kSubpixelOne + kSubpixelHalf;
-  return (b.x - a.x) * (sy - a.y) - (b.y - a.y) * (sx - a.x);
-}
-
 bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
                    const RenderState& state, const DepthCodec& codec, TriangleSetup& t) {
   int64_t area2 = signedArea2(a, b, c);

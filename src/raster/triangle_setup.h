@@ -58,8 +58,16 @@ struct TriangleSetup {
   // more (their span loops leave the clamp out), false where not shown or not asked.
   bool depthsInUnit = false;
 
-  // E_i at the centre of pixel (px, py).
-  int64_t edgeAt(int i, int px, int py) const;
+  // E_i at the centre of pixel (px, py). Inline: the span loops ask for three at every triangle
+  // and band.
+  int64_t edgeAt(int i, int px, int py) const {
+    constexpr int kNext[3] = {1, 2, 0}, kAfter[3] = {2, 0, 1};  // (i + 1) % 3, (i + 2) % 3
+    const WindowVertex& a = v[kNext[i]];
+    const WindowVertex& b = v[kAfter[i]];
+    const int64_t sx = int64_t(px) * kSubpixelOne + kSubpixelHalf;
+    const int64_t sy = int64_t(py) * kSubpixelOne + kSubpixelHalf;
+    return (b.x - a.x) * (sy - a.y) - (b.y - a.y) * (sx - a.x);
+  }
 };
 
 // The setups of a block of triangles, set up in place: emplace_back() leaves the setup
