@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <type_traits>
+#include <vector>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -292,6 +293,38 @@ struct RowDepth {
   }
   // The codes of the eight pixels from column x.
   v8u codes8(int x) const { return codes8(centres(x)); }
+  // The codes of eight pixels from their dzdx * (centre - fx0), the eight doubles at `slopes`
+  // (the column part of the depth, the same for every row of a triangle: columnDepthParts).
+  v8u codes8(const double* slopes) const {
+    if constexpr (!kPlainFloat) {  // code()'s steps lane by lane
+      v8u out;
+      for (int i = 0; i < 8; ++i) {
+        double z = (z0 + (slopes[i] + rowPart)) + offset;
+        if (clamp) z = std::clamp(z, lo, hi);
+        out[i] = codec.encode(z);
+      }
+      return out;
+    }
+#if defined(__AVX512F__)
+    ClampLanes8 d;
+    std::memcpy(&d, slopes, sizeof d);
+    ClampLanes8 z = (z0 + (d + rowPart)) + offset;
+    if constexpr (K == RowKind::PlainFloat) z = clampUnitOrZero(z);  // encode's clamp
+    return std::bit_cast<v8u>(__builtin_convertvector(z, v8f));
+#else
+    v4d a, b;
+    std::memcpy(&a, slopes, sizeof a);
+    std::memcpy(&b, slopes + 4, sizeof b);
+    v4d za = (z0 + (a + rowPart)) + offset, zb = (z0 + (b + rowPart)) + offset;
+    if constexpr (K == RowKind::PlainFloat) {
+      za = clampUnitOrZero(za);
+      zb = clampUnitOrZero(zb);
+    }
+    const v4u ca = std::bit_cast<v4u>(__builtin_convertvector(za, v4f));
+    const v4u cb = std::bit_cast<v4u>(__builtin_convertvector(zb, v4f));
+    return __builtin_shufflevector(ca, cb, 0, 1, 2, 3, 4, 5, 6, 7);
+#endif
+  }
   uint32_t code(int x) const {
     double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
     if (!kPlainFloat && clamp) z = std::clamp(z, lo, hi);
@@ -405,32 +438,53 @@ inline v8u liveLanes(int first, int lo, int hi) {
   return (v8u)((column >= lo) & (column <= hi));
 }
 
+// One step of depthTestRows: the eight pixels of a row from column x (stored: the row's depth
+// codes), `live` the lanes to test; returns the lanes that pass. Whole: every lane live. Without a
+// depth test a step with dead lanes still reads the depths (block may store them back), where the
+// framebuffer has a depth buffer at all.
+template <CompareFunc F, bool Whole, class Block>
+inline v8u depthStep(const uint32_t* stored, bool hasDepth, size_t rowStart, int x, v8u codes, v8u live,
+                     const Block& block) {
+  v8u before{};
+  if constexpr (F != CompareFunc::Always) std::memcpy(&before, stored + x, sizeof before);
+  else if (!Whole && hasDepth) std::memcpy(&before, stored + x, sizeof before);
+  const v8u pass = codesPass<F>(codes, before) & live;
+  block(rowStart + size_t(x), codes, before, live, pass);
+  return pass;
+}
+
+// Triangles of at least this many rows in a band (and 17 columns) take the column part of their
+// depths from a table made once per triangle and band (columnDepthParts).
+constexpr int kSlopeRows = 8;
+
+// The column part of a float depth, dzdx * (centre - fx0), for every column a step of the
+// triangle's rows in the region can start at or cover — the same operations as RowDepth's, so the
+// same bits — indexed by column; nullptr where the triangle has too few rows or columns for the
+// table to pay. A row then adds three numbers a pixel instead of five and a multiplication (the
+// map pass and the volume sides are bound by their double additions). The table is the calling
+// thread's, valid until its next call.
+const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int bufferWidth) {
+  const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
+  const int rows = std::min(t.maxY, region.y + region.height - 1) - std::max(t.minY, region.y) + 1;
+  if (rows < kSlopeRows || x1 - x0 < 16 || bufferWidth < 8) return nullptr;
+  thread_local std::vector<double> table;
+  const int from = x0 - 7;  // a row's last step starts at most seven columns left of x0
+  table.resize(size_t(x1 + 8 - from));
+  for (size_t c = 0; c < table.size(); ++c) table[c] = t.dzdx * ((double(from + int(c)) + 0.5) - t.v[0].fx);
+  return table.data() - from;
+}
+
 // The rows of a triangle, depth tested eight pixels per step: block(at, codes, stored, live, pass)
 // for each eight pixels from buffer index `at` (v8u vectors of codes; `live` the lanes inside the
 // span and `pass` the live lanes that pass, lane masks). What is left of a span after its whole
 // steps of eight — a short span all of it — is one more step, over the eight pixels of the row
 // from the first one left, or the row's last eight where the row ends sooner: one step without
 // branches in place of up to seven single pixels. Its other lanes are dead; block may store them
-// back as they were read (they are pixels of the same row, which this thread owns). A framebuffer
-// narrower than eight pixels has no such window; its rows go pixel by pixel, single(at, code,
-// pass). Counts the fragments and the failed depth tests. F = Always (no depth test) reads no
-// depth but the dead lanes', and none without a depth buffer (where block writes no depth).
-// One step of depthTestRows: the eight pixels of a row from column x (stored: the row's depth
-// codes), `live` the lanes to test; returns the lanes that pass. Whole: every lane live. Without a
-// depth test a step with dead lanes still reads the depths (block may store them back), where the
-// framebuffer has a depth buffer at all.
-template <CompareFunc F, bool Whole, RowKind K, class Block>
-inline v8u depthStep(const RowDepth<K>& row, const uint32_t* stored, bool hasDepth, size_t rowStart, int x,
-                     typename RowDepth<K>::Centres centres, v8u live, const Block& block) {
-  v8u before{};
-  if constexpr (F != CompareFunc::Always) std::memcpy(&before, stored + x, sizeof before);
-  else if (!Whole && hasDepth) std::memcpy(&before, stored + x, sizeof before);
-  const v8u codes = row.codes8(centres);
-  const v8u pass = codesPass<F>(codes, before) & live;
-  block(rowStart + size_t(x), codes, before, live, pass);
-  return pass;
-}
-
+// back as they were read (they are pixels of the same row, which this thread owns). Narrow
+// triangles go a row at a time in one such window (rasterizeNarrowRows). A framebuffer narrower
+// than eight pixels has no such window; its rows go pixel by pixel, single(at, code, pass).
+// Counts the fragments and the failed depth tests. F = Always (no depth test) reads no depth but
+// the dead lanes', and none without a depth buffer (where block writes no depth).
 template <CompareFunc F, RowKind K, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
                    uint64_t& fragments, uint64_t& failed, const Block& block, const Single& single) {
@@ -440,46 +494,50 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   uint64_t rowsFragments = 0, rowsPassed = 0;  // locals: the loops keep them in registers
   v8u passed8{};  // passed tests per lane, summed once per triangle rather than per row
   if (isNarrow(t, region, width)) {
-    v8u live8{};  // covered pixels per lane
+    v8u covered8{};  // covered pixels per lane
     rasterizeNarrowRows(t, region, width, [&, depth, hasDepth, width](int y, int window, NarrowLanes covered) {
       const size_t rowStart = size_t(y) * size_t(width);
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
       const Block rowBlock = block;  // a copy: see below
       const v8u live = (v8u)covered;
-      passed8 -= depthStep<F, false>(row, depth + rowStart, hasDepth, rowStart, window, row.centres(window), live, rowBlock);
-      live8 -= live;
+      passed8 -= depthStep<F, false>(depth + rowStart, hasDepth, rowStart, window, row.codes8(window), live, rowBlock);
+      covered8 -= live;
     });
-    for (int lane = 0; lane < 8; ++lane) rowsFragments += uint64_t(live8[lane]);
+    for (int lane = 0; lane < 8; ++lane) rowsFragments += uint64_t(covered8[lane]);
   } else {
-  rasterizeRowSpans(t, region, [&, depth, hasDepth, width](int y, int xl, int xr) {
-    const size_t rowStart = size_t(y) * size_t(width);
-    const int n = xr - xl + 1;
-    const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
-    // Copies for the row: stores through the buffers may alias anything in memory, so values
-    // read through the closures would be read again after every store.
-    const uint32_t* const stored = depth + rowStart;
-    const Block rowBlock = block;
-    const Single rowSingle = single;
-    v8u rowPassed8{};  // in a register through the row; the triangle's sum is in memory
-    int x = xl;
-    auto centres = row.centres(x);
-    for (; x + 8 <= xr + 1; x += 8, centres = row.nextStep(centres))  // a passing lane is -1
-      rowPassed8 -= depthStep<F, true>(row, stored, hasDepth, rowStart, x, centres, ~v8u{}, rowBlock);
-    if (x <= xr && width >= 8) {
-      const int first = std::min(x, width - 8);
-      rowPassed8 -= depthStep<F, false>(row, stored, hasDepth, rowStart, first, row.centres(first),
-                                        liveLanes(first, x, xr), rowBlock);
-    } else {
-      for (; x <= xr; ++x) {
-        const uint32_t code = row.code(x);
-        const bool pass = passes<F>(code, F == CompareFunc::Always ? code : stored[x]);
-        rowsPassed += pass;
-        rowSingle(rowStart + size_t(x), code, pass);
+    const double* slopes = RowDepth<K>::kPlainFloat ? columnDepthParts(t, region, width) : nullptr;
+    rasterizeRowSpans(t, region, [&, depth, hasDepth, width, slopes](int y, int xl, int xr) {
+      const size_t rowStart = size_t(y) * size_t(width);
+      const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
+      // Copies for the row: stores through the buffers may alias anything in memory, so values
+      // read through the closures would be read again after every store.
+      const uint32_t* const stored = depth + rowStart;
+      const Block rowBlock = block;
+      const Single rowSingle = single;
+      v8u rowPassed8{};  // in a register through the row (a passing lane is -1); the triangle's in memory
+      int x = xl;
+      if (slopes) {
+        for (; x + 8 <= xr + 1; x += 8)
+          rowPassed8 -= depthStep<F, true>(stored, hasDepth, rowStart, x, row.codes8(slopes + x), ~v8u{}, rowBlock);
+      } else {
+        for (auto centres = row.centres(x); x + 8 <= xr + 1; x += 8, centres = row.nextStep(centres))
+          rowPassed8 -= depthStep<F, true>(stored, hasDepth, rowStart, x, row.codes8(centres), ~v8u{}, rowBlock);
       }
-    }
-    passed8 += rowPassed8;
-    rowsFragments += uint64_t(n);
-  });
+      if (x <= xr && width >= 8) {
+        const int first = std::min(x, width - 8);
+        const v8u codes = slopes ? row.codes8(slopes + first) : row.codes8(first);
+        rowPassed8 -= depthStep<F, false>(stored, hasDepth, rowStart, first, codes, liveLanes(first, x, xr), rowBlock);
+      } else {
+        for (; x <= xr; ++x) {
+          const uint32_t code = row.code(x);
+          const bool pass = passes<F>(code, F == CompareFunc::Always ? code : stored[x]);
+          rowsPassed += pass;
+          rowSingle(rowStart + size_t(x), code, pass);
+        }
+      }
+      passed8 += rowPassed8;
+      rowsFragments += uint64_t(xr - xl + 1);
+    });
   }
   for (int lane = 0; lane < 8; ++lane) rowsPassed += uint64_t(passed8[lane]);
   fragments += rowsFragments;
