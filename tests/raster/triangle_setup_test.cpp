@@ -242,3 +242,46 @@ TEST_CASE("depthsInUnit is set only where every covered depth is above 0 and at 
   }
   CHECK(set > 200);
 }
+
+TEST_CASE("edgeAt is the edge function of the vertices at the pixel centre, for vertices across the guard band",
+          "[raster][setup][edges]") {
+  // The definition evaluated from the vertices in 128-bit integers (no overflow whatever the
+  // inputs), against edgeAt's 64-bit arithmetic, at pixels inside a large framebuffer: the span
+  // loops and the coverage tests' oracle both start from edgeAt.
+  uint64_t state = 0x2545F4914F6CDD1Dull;
+  auto next = [&]() {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return state;
+  };
+  __extension__ typedef __int128 Wide;  // GCC's, wide enough for any product of two int64 here
+  const int64_t reach = int64_t(1) << 27;  // sub-pixels: 2^19 pixels, beyond any guard band here
+  RenderState rs;
+  const DepthCodec codec;
+  int checked = 0;
+  for (int n = 0; n < 2000; ++n) {
+    WindowVertex v[3];
+    for (WindowVertex& w : v) {
+      const int64_t spread = n % 2 ? reach : 4096 * kSubpixelOne;
+      w.x = int64_t(next() % uint64_t(2 * spread)) - spread;
+      w.y = int64_t(next() % uint64_t(2 * spread)) - spread;
+      w.fx = double(w.x) / kSubpixelOne;
+      w.fy = double(w.y) / kSubpixelOne;
+    }
+    TriangleSetup t;
+    if (!setupTriangle(v[0], v[1], v[2], FrontFacing, rs, codec, t)) continue;
+    for (int k = 0; k < 8; ++k) {
+      const int px = int(next() % 16384) - 64, py = int(next() % 16384) - 64;
+      for (int i = 0; i < 3; ++i) {
+        const WindowVertex& a = t.v[(i + 1) % 3];
+        const WindowVertex& b = t.v[(i + 2) % 3];
+        const Wide sx = Wide(px) * kSubpixelOne + kSubpixelHalf, sy = Wide(py) * kSubpixelOne + kSubpixelHalf;
+        const Wide expected = Wide(b.x - a.x) * (sy - a.y) - Wide(b.y - a.y) * (sx - a.x);
+        REQUIRE(Wide(t.edgeAt(i, px, py)) == expected);
+      }
+    }
+    ++checked;
+  }
+  CHECK(checked > 1900);
+}
