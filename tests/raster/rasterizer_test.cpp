@@ -334,13 +334,8 @@ TEST_CASE("narrow rows cover exactly the pixels whose three edge functions pass,
   // most a few pixels wide (slivers, edges through pixel centres, points far outside), regions that
   // cut wide triangles down to a few columns, and buffers whose last columns force the window to
   // start left of the triangle.
-  uint64_t state = 0xD1B54A32D192ED03ull;
-  auto next = [&]() {
-    state ^= state << 13;
-    state ^= state >> 7;
-    state ^= state << 17;
-    return state;
-  };
+  TestRandom random(0xD1B54A32D192ED03ull);
+  auto next = [&]() { return random.bits(); };
   RenderState rs;
   const DepthCodec codec;
   int checked = 0, coveredTotal = 0, shiftedWindows = 0;

@@ -248,13 +248,8 @@ TEST_CASE("edgeAt is the edge function of the vertices at the pixel centre, for 
   // The definition evaluated from the vertices in 128-bit integers (no overflow whatever the
   // inputs), against edgeAt's 64-bit arithmetic, at pixels inside a large framebuffer: the span
   // loops and the coverage tests' oracle both start from edgeAt.
-  uint64_t state = 0x2545F4914F6CDD1Dull;
-  auto next = [&]() {
-    state ^= state << 13;
-    state ^= state >> 7;
-    state ^= state << 17;
-    return state;
-  };
+  TestRandom random(0x2545F4914F6CDD1Dull);
+  auto next = [&]() { return random.bits(); };
   __extension__ typedef __int128 Wide;  // GCC's, wide enough for any product of two int64 here
   const int64_t reach = int64_t(1) << 27;  // sub-pixels: 2^19 pixels, beyond any guard band here
   RenderState rs;

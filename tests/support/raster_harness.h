@@ -62,6 +62,7 @@ class TestRandom {
   double uniform() { return double(engine_() >> 11) * 0x1.0p-53; }  // [0, 1)
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
   int below(int n) { return int(uniform() * double(n)); }  // 0 .. n-1
+  uint64_t bits() { return engine_(); }  // 64 random bits
 
  private:
   std::mt19937_64 engine_;
