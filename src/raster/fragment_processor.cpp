@@ -460,7 +460,7 @@ constexpr int kSlopeRows = 8;
 // The column part of a float depth, dzdx * (centre - fx0), for every column a step of the
 // triangle's rows in the region can start at or cover — the same operations as RowDepth's, so the
 // same bits — indexed by column; nullptr where the triangle has too few rows or columns for the
-// table to pay. A row then adds three numbers a pixel instead of five and a multiplication (the
+// table to pay. A row then adds three numbers a pixel instead of four and a multiplication (the
 // map pass and the volume sides are bound by their double additions). The table is the calling
 // thread's, valid until its next call.
 const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int bufferWidth) {
@@ -498,7 +498,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     rasterizeNarrowRows(t, region, width, [&, depth, hasDepth, width](int y, int window, NarrowLanes covered) {
       const size_t rowStart = size_t(y) * size_t(width);
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
-      const Block rowBlock = block;  // a copy: see below
+      const Block rowBlock = block;  // a copy, as in the span rows below
       const v8u live = (v8u)covered;
       passed8 -= depthStep<F, false>(depth + rowStart, hasDepth, rowStart, window, row.codes8(window), live, rowBlock);
       covered8 -= live;

@@ -209,7 +209,7 @@ void rasterizeNarrowRows(const TriangleSetup& t, const Rect& region, int bufferW
   if (x0 > x1 || y0 > y1) return;
   const int window = std::min(x0, bufferWidth - kNarrowColumns);
   const Edges lane = {0, 1, 2, 3, 4, 5, 6, 7};
-  static_assert(kNarrowColumns == 8, "lane lists above and below");
+  static_assert(kNarrowColumns == 8, "the lane list above");
   const Edges column = window + lane;
   const Edges inColumns = (column >= x0) & (column <= x1);
   Edges e[3];
