@@ -63,4 +63,19 @@ inline ClampLanes8 clampUnitOrZero(ClampLanes8 z) {
   return positive ? (above ? ClampLanes8{} + 1.0 : z) : ClampLanes8{};
 }
 
+// clampUnitOrZero after the conversion to float, on eight floats: float(clampUnitOrZero(z)) has
+// the bits of clampUnitOrZeroFloat(float(z)) for every double z — the rounding to float keeps the
+// order against 0 and 1 (a z above 1 rounds to 1 or more, a positive z to +0 or more, NaN stays
+// NaN) — and eight floats are one AVX register where eight doubles are two halves.
+using ClampFloats8 = float __attribute__((vector_size(32)));
+inline ClampFloats8 clampUnitOrZeroFloat(ClampFloats8 f) {
+#if defined(__AVX__)
+  return __m256(_mm256_min_ps(_mm256_set1_ps(1.0f), _mm256_max_ps(__m256(f), _mm256_setzero_ps())));
+#else
+  using Mask = int32_t __attribute__((vector_size(32)));
+  const Mask positive = f > 0.0f, above = 1.0f < f;
+  return positive ? (above ? ClampFloats8{} + 1.0f : f) : ClampFloats8{};
+#endif
+}
+
 }  // namespace shadowref

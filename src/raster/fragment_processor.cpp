@@ -271,13 +271,21 @@ struct RowDepth {
   }
   static Centres nextStep(Centres c) { return {c.low + 8.0, c.high + 8.0}; }
 #endif
+#if defined(__AVX512F__)
+  // A float buffer's codes of eight depths: the floats' bits, with encode's clamp to [0, 1] where
+  // the row kind needs it — applied to the floats (clampUnitOrZeroFloat: the same bits).
+  static v8u floatCodes(ClampLanes8 z) {
+    const v8f f = __builtin_convertvector(z, v8f);
+    if constexpr (K == RowKind::PlainFloat) return std::bit_cast<v8u>(clampUnitOrZeroFloat(f));
+    return std::bit_cast<v8u>(f);
+  }
+#endif
   // The codes of the eight pixels whose centres are c.
   v8u codes8(Centres c) const {
 #if defined(__AVX512F__)
     if constexpr (kPlainFloat) {
-      ClampLanes8 z = (z0 + (dzdx * (c - fx0) + rowPart)) + offset;
-      if constexpr (K == RowKind::PlainFloat) z = clampUnitOrZero(z);  // encode's clamp
-      return std::bit_cast<v8u>(__builtin_convertvector(z, v8f));
+      const ClampLanes8 z = (z0 + (dzdx * (c - fx0) + rowPart)) + offset;
+      return floatCodes(z);
     }
     const v4d low = {c[0], c[1], c[2], c[3]}, high = {c[4], c[5], c[6], c[7]};
     const v4u a = codes4(low), b = codes4(high);
@@ -304,26 +312,25 @@ struct RowDepth {
         out[i] = codec.encode(z);
       }
       return out;
-    }
+    } else {
 #if defined(__AVX512F__)
-    ClampLanes8 d;
-    std::memcpy(&d, slopes, sizeof d);
-    ClampLanes8 z = (z0 + (d + rowPart)) + offset;
-    if constexpr (K == RowKind::PlainFloat) z = clampUnitOrZero(z);  // encode's clamp
-    return std::bit_cast<v8u>(__builtin_convertvector(z, v8f));
+      ClampLanes8 d;
+      std::memcpy(&d, slopes, sizeof d);
+      return floatCodes((z0 + (d + rowPart)) + offset);
 #else
-    v4d a, b;
-    std::memcpy(&a, slopes, sizeof a);
-    std::memcpy(&b, slopes + 4, sizeof b);
-    v4d za = (z0 + (a + rowPart)) + offset, zb = (z0 + (b + rowPart)) + offset;
-    if constexpr (K == RowKind::PlainFloat) {
-      za = clampUnitOrZero(za);
-      zb = clampUnitOrZero(zb);
-    }
-    const v4u ca = std::bit_cast<v4u>(__builtin_convertvector(za, v4f));
-    const v4u cb = std::bit_cast<v4u>(__builtin_convertvector(zb, v4f));
-    return __builtin_shufflevector(ca, cb, 0, 1, 2, 3, 4, 5, 6, 7);
+      v4d a, b;
+      std::memcpy(&a, slopes, sizeof a);
+      std::memcpy(&b, slopes + 4, sizeof b);
+      v4d za = (z0 + (a + rowPart)) + offset, zb = (z0 + (b + rowPart)) + offset;
+      if constexpr (K == RowKind::PlainFloat) {
+        za = clampUnitOrZero(za);
+        zb = clampUnitOrZero(zb);
+      }
+      const v4u ca = std::bit_cast<v4u>(__builtin_convertvector(za, v4f));
+      const v4u cb = std::bit_cast<v4u>(__builtin_convertvector(zb, v4f));
+      return __builtin_shufflevector(ca, cb, 0, 1, 2, 3, 4, 5, 6, 7);
 #endif
+    }
   }
   uint32_t code(int x) const {
     double z = (z0 + (dzdx * ((double(x) + 0.5) - fx0) + rowPart)) + offset;
