@@ -54,14 +54,9 @@ inline ClampLanes clampUnitOrZero(ClampLanes z) {
 #endif
 }
 
-// clampUnitOrZero on eight doubles (the span loops' eight depths with AVX-512, where the compares
-// and selects go through mask registers; elsewhere GCC makes them lane by lane).
+// Eight doubles: the span loops' eight depths with AVX-512, clamped after their conversion to
+// float (below).
 using ClampLanes8 = double __attribute__((vector_size(64)));
-inline ClampLanes8 clampUnitOrZero(ClampLanes8 z) {
-  using Mask = int64_t __attribute__((vector_size(64)));
-  const Mask positive = z > 0.0, above = 1.0 < z;
-  return positive ? (above ? ClampLanes8{} + 1.0 : z) : ClampLanes8{};
-}
 
 // clampUnitOrZero after the conversion to float, on eight floats: float(clampUnitOrZero(z)) has
 // the bits of clampUnitOrZeroFloat(float(z)) for every double z — the rounding to float keeps the
