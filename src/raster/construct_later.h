@@ -5,6 +5,7 @@
 // leave it as allocated. The element types are implicit-lifetime (trivial, or aggregates), so
 // their objects exist from allocation; whoever makes an element writes all of it before anything
 // reads it. Everything else (assign, resize with a value, copies) works as with std::allocator.
+// The memory comes from Base (the pixel buffers': PixelAllocator, pixel_memory.h).
 #pragma once
 
 #include <memory>
@@ -13,12 +14,12 @@
 
 namespace shadowref {
 
-template <class T>
-struct ConstructLaterAllocator : std::allocator<T> {
-  using std::allocator<T>::allocator;
+template <class T, class Base = std::allocator<T>>
+struct ConstructLaterAllocator : Base {
+  using Base::Base;
   template <class U>
   struct rebind {
-    using other = ConstructLaterAllocator<U>;
+    using other = ConstructLaterAllocator<U, typename std::allocator_traits<Base>::template rebind_alloc<U>>;
   };
   template <class U>
   void construct(U*) noexcept {}

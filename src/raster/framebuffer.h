@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "raster/construct_later.h"
+#include "raster/pixel_memory.h"
 
 namespace shadowref {
 
@@ -46,9 +47,11 @@ struct DepthCodec {
   double resolvableDifference(double zMax) const;
 };
 
-// A buffer's pixels.
+// A buffer's pixels: made unwritten (ConstructLaterAllocator); a large buffer (a frame's colour,
+// depth and accumulation buffers, a shadow map) in 2 MB pages kept from frame to frame
+// (PixelAllocator, pixel_memory.h).
 template <class T>
-using PixelVector = std::vector<T, ConstructLaterAllocator<T>>;
+using PixelVector = std::vector<T, ConstructLaterAllocator<T, PixelAllocator<T>>>;
 
 class Framebuffer {
  public:

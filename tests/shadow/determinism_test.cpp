@@ -2,9 +2,9 @@
 // for any thread count.
 #include <catch2/catch.hpp>
 
-#include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 #include "support/frame_compare.h"
+#include "support/generated_scene.h"
 
 using namespace shadowref;
 using shadowref::testing::requireIdenticalFrames;
@@ -12,13 +12,11 @@ using shadowref::testing::requireIdenticalFrames;
 namespace {
 
 Scene smallScene(const std::string& generator, const std::string& method) {
-  LoadOptions options;
 #if defined(__SANITIZE_ADDRESS__)
-  options.overrides = {"image.width=160", "image.height=128", "shadow.method=" + method};
+  return shadowref::testing::generatedScene(generator, method, 160, 128);
 #else
-  options.overrides = {"image.width=320", "image.height=256", "shadow.method=" + method};
+  return shadowref::testing::generatedScene(generator, method, 320, 256);
 #endif
-  return loadSceneFromString("generator: {type: " + generator + "}\n", "<determinism>", options);
 }
 
 FrameResult render(const Scene& scene, int threads) {
