@@ -45,13 +45,14 @@ TEST_CASE("a freed pixel block is handed to the next request of its size, not ma
   CHECK(pixelMemoryCounts().blocksKept == before.blocksKept - 1);
   // Another size in the same 2 MB pages takes the same block too; one needing more pages does not.
   returnPixelBlock(second, bytes);
-  void* sameSize = takePixelBlock(6 * kHugePageSize);
+  const std::size_t sameBytes = 6 * kHugePageSize - 4096, largerBytes = 6 * kHugePageSize + 1;
+  void* sameSize = takePixelBlock(sameBytes);
   CHECK(sameSize == first);
-  void* larger = takePixelBlock(6 * kHugePageSize + 1);
+  void* larger = takePixelBlock(largerBytes);
   CHECK(larger != first);
   CHECK(pixelMemoryCounts().blocksMapped == before.blocksMapped + 1);
-  returnPixelBlock(sameSize, 6 * kHugePageSize);
-  returnPixelBlock(larger, 6 * kHugePageSize + 1);
+  returnPixelBlock(sameSize, sameBytes);
+  returnPixelBlock(larger, largerBytes);
 }
 
 TEST_CASE("a pixel block freed on another thread is reused on this one", "[raster][memory]") {
