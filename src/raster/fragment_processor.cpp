@@ -271,13 +271,24 @@ struct RowDepth {
   }
   static Centres nextStep(Centres c) { return {c.low + 8.0, c.high + 8.0}; }
 #endif
-#if defined(__AVX512F__)
   // A float buffer's codes of eight depths: the floats' bits, with encode's clamp to [0, 1] where
-  // the row kind needs it — applied to the floats (clampUnitOrZeroFloat: the same bits).
-  static v8u floatCodes(ClampLanes8 z) {
-    const v8f f = __builtin_convertvector(z, v8f);
+  // the row kind needs it — applied to the eight floats (clampUnitOrZeroFloat: the same bits as
+  // clamping the doubles), one 256-bit register where the doubles are two.
+  static v8u floatCodes(v8f f) {
     if constexpr (K == RowKind::PlainFloat) return std::bit_cast<v8u>(clampUnitOrZeroFloat(f));
     return std::bit_cast<v8u>(f);
+  }
+#if defined(__AVX512F__)
+  static v8u floatCodes(ClampLanes8 z) { return floatCodes(__builtin_convertvector(z, v8f)); }
+#else
+  // The same from two halves of four depths.
+  static v8u floatCodes(v4d low, v4d high) {
+    const v4f a = __builtin_convertvector(low, v4f), b = __builtin_convertvector(high, v4f);
+#if defined(__AVX__)
+    return floatCodes(std::bit_cast<v8f>(_mm256_setr_m128(std::bit_cast<__m128>(a), std::bit_cast<__m128>(b))));
+#else
+    return floatCodes(v8f(__builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7)));
+#endif
   }
 #endif
   // The codes of the eight pixels whose centres are c.
@@ -290,6 +301,11 @@ struct RowDepth {
     const v4d low = {c[0], c[1], c[2], c[3]}, high = {c[4], c[5], c[6], c[7]};
     const v4u a = codes4(low), b = codes4(high);
 #else
+    if constexpr (kPlainFloat) {  // codes4's steps, the clamp on the eight floats
+      const v4d low = (z0 + (dzdx * (c.low - fx0) + rowPart)) + offset;
+      const v4d high = (z0 + (dzdx * (c.high - fx0) + rowPart)) + offset;
+      return floatCodes(low, high);
+    }
     const v4u a = codes4(c.low), b = codes4(c.high);
 #endif
 #if defined(__AVX__)
@@ -321,14 +337,7 @@ struct RowDepth {
       v4d a, b;
       std::memcpy(&a, slopes, sizeof a);
       std::memcpy(&b, slopes + 4, sizeof b);
-      v4d za = (z0 + (a + rowPart)) + offset, zb = (z0 + (b + rowPart)) + offset;
-      if constexpr (K == RowKind::PlainFloat) {
-        za = clampUnitOrZero(za);
-        zb = clampUnitOrZero(zb);
-      }
-      const v4u ca = std::bit_cast<v4u>(__builtin_convertvector(za, v4f));
-      const v4u cb = std::bit_cast<v4u>(__builtin_convertvector(zb, v4f));
-      return __builtin_shufflevector(ca, cb, 0, 1, 2, 3, 4, 5, 6, 7);
+      return floatCodes((z0 + (a + rowPart)) + offset, (z0 + (b + rowPart)) + offset);
 #endif
     }
   }
