@@ -236,9 +236,11 @@ struct RowDepth {
     const v4d lane = {0.5, 1.5, 2.5, 3.5};
     return codes4(double(x) + lane);
   }
+  // The depths of the four pixels whose centres' x are the lanes of cx, before the codec.
+  v4d depths4(v4d cx) const { return (z0 + (dzdx * (cx - fx0) + rowPart)) + offset; }
   // The codes of the four pixels whose centres' x are the lanes of cx.
   v4u codes4(v4d cx) const {
-    v4d z = (z0 + (dzdx * (cx - fx0) + rowPart)) + offset;
+    v4d z = depths4(cx);
     if (!kPlainFloat && clamp) z = z < lo ? v4d{} + lo : (hi < z ? v4d{} + hi : z);  // std::clamp
     v4u out;
     if constexpr (K == RowKind::UnitFloat) {
@@ -301,11 +303,7 @@ struct RowDepth {
     const v4d low = {c[0], c[1], c[2], c[3]}, high = {c[4], c[5], c[6], c[7]};
     const v4u a = codes4(low), b = codes4(high);
 #else
-    if constexpr (kPlainFloat) {  // codes4's steps, the clamp on the eight floats
-      const v4d low = (z0 + (dzdx * (c.low - fx0) + rowPart)) + offset;
-      const v4d high = (z0 + (dzdx * (c.high - fx0) + rowPart)) + offset;
-      return floatCodes(low, high);
-    }
+    if constexpr (kPlainFloat) return floatCodes(depths4(c.low), depths4(c.high));  // the clamp on eight floats
     const v4u a = codes4(c.low), b = codes4(c.high);
 #endif
 #if defined(__AVX__)
