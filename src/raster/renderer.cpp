@@ -179,7 +179,7 @@ size_t trianglesOf(const DrawCall& call) {
 // Triangle assembly is split into chunks of this many triangles when there are threads; each
 // chunk's setups are appended in chunk order, so the list is the same as on one thread.
 constexpr size_t kAssemblyChunk = 128;
-// Groups of queued draws per thread at a flush (assembleQueued).
+// Groups of a queued pass's triangles per thread at a flush (assembleQueued).
 constexpr size_t kQueuedGroupsPerThread = 4;
 // The vertices' clip tests and window transforms, in chunks of this many vertices on threads.
 constexpr size_t kCornerChunk = 1024;
@@ -190,18 +190,19 @@ constexpr size_t kCornerChunk = 1024;
 // same vertex: the same bits). A volume's draws use part of their vertices each (a cap's near or
 // far ones), so the used ones are marked first.
 void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes, VertexCorners& corners,
-                              ThreadPool* pool) {
+                              ThreadPool* pool, size_t firstTriangle, size_t lastTriangle) {
   const size_t count = call.vertices.size();
   corners.base = nullptr;
-  if (call.indices.empty() || count > call.indices.size()) return;
+  const std::span<const uint32_t> used = call.indices.empty() ? std::span<const uint32_t>()
+                                         : std::span(call.indices).subspan(3 * firstTriangle, 3 * (lastTriangle - firstTriangle));
+  if (used.empty() || count > used.size()) return;
   if (corners.window.size() < count) {  // grown only: resizing down and up would construct again
     corners.window.resize(count);
     corners.inside.resize(count);
   }
   uint8_t* const inside = corners.inside.data();
   std::fill_n(inside, count, uint8_t(2));  // 2: unused
-  for (const uint32_t i : call.indices)
-    inside[i] = 0;  // every index is in range (draw() checked them)
+  for (const uint32_t i : used) inside[i] = 0;  // every index is in range (draw() checked them)
   auto range = [&](size_t first, size_t last) {
     for (size_t i = first; i < last; ++i) {
       if (inside[i] == 2) continue;
@@ -258,7 +259,7 @@ void Renderer::draw(const DrawCall& call) {
   }
   const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
   if (assembly_.size() < chunks) assembly_.resize(chunks);
-  prepareCorners(call, planes, corners_, pool_);
+  prepareCorners(call, planes, corners_, pool_, 0, triangleCount);
   for (size_t c = 0; c < chunks; ++c) assembly_[c].corners = &corners_;
   if (chunks == 1) {
     assembleRange(call, 0, triangleCount, planes, varyingCount, assembly_[0]);
@@ -304,20 +305,22 @@ void Renderer::keepBlock(AssemblyWorkspace& ws) {
 }
 
 // `pending`'s setups are the `count` from pendingSetups_[pending.first]: fills in its count and rows;
-// false when it has nothing to rasterize. Touches nothing but `pending`: groups of queued draws
-// finish theirs at once.
+// false when it has nothing to rasterize.
 bool Renderer::finishPending(PendingDraw& pending, size_t count) const {
+  int minY = std::numeric_limits<int>::max(), maxY = -1;
+  for (size_t i = pending.first; i < pending.first + count; ++i) {
+    minY = std::min(minY, pendingBounds_[i].minY);
+    maxY = std::max(maxY, pendingBounds_[i].maxY);
+  }
+  return settleRows(pending, count, minY, maxY);
+}
+
+bool Renderer::settleRows(PendingDraw& pending, size_t count, int minY, int maxY) {
   pending.count = count;
   const Rect& region = pending.region;
-  if (region.width <= 0 || region.height <= 0 || pending.count == 0) return false;
-  pending.minY = region.y + region.height;
-  pending.maxY = -1;
-  for (size_t i = pending.first; i < pending.first + pending.count; ++i) {
-    pending.minY = std::min(pending.minY, pendingBounds_[i].minY);
-    pending.maxY = std::max(pending.maxY, pendingBounds_[i].maxY);
-  }
-  pending.minY = std::max(pending.minY, region.y);
-  pending.maxY = std::min(pending.maxY, region.y + region.height - 1);
+  if (region.width <= 0 || region.height <= 0 || count == 0) return false;
+  pending.minY = std::max(std::min(minY, region.y + region.height), region.y);
+  pending.maxY = std::min(maxY, region.y + region.height - 1);
   return pending.minY <= pending.maxY;
 }
 
@@ -338,48 +341,56 @@ void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int
 }
 
 void Renderer::assembleQueued() {
-  // Groups of consecutive queued draws, of about equal triangle counts, a few per thread, each
-  // assembled into one workspace by one task: one pool run for the whole pass instead of one or
-  // two per draw, one block per group (the city's volume pass queues ~800 draws, the pumpkins'
-  // passes a dozen large ones).
+  // The pass's triangles, draw after draw, cut into runs, a few per thread, each assembled into
+  // one workspace by one task: one pool run for the whole pass instead of one or two per draw, one
+  // block per group (the city's volume pass queues ~800 draws, the pumpkins' passes a dozen large
+  // ones). The threads take the groups in order, so the runs shrink — shares groups + 1, groups,
+  // … 2 of the triangles — and the last ones, small, even out the threads' ends; a draw may be cut
+  // between groups (groups of whole draws waited for the lantern's 6012 triangles).
   size_t total = 0;
   for (const QueuedAssembly& q : queued_) total += trianglesOf(q.call);
-  const size_t target = std::max<size_t>(1, total / (size_t(pool_->threadCount()) * kQueuedGroupsPerThread));
+  const size_t groups = std::min(total, size_t(pool_->threadCount()) * kQueuedGroupsPerThread);
+  const size_t parts = groups * (groups + 3) / 2;
+  auto groupStart = [&](size_t g) {  // the parts of groups 0 … g - 1: g (groups + 1) - g (g - 1) / 2
+    return g == groups ? total : total * (g * (groups + 1) - g * (g - 1) / 2) / parts;
+  };
+  queuedPieces_.clear();
   queuedGroups_.assign(1, 0);
-  size_t inGroup = 0;
-  for (size_t i = 0; i < queued_.size(); ++i) {
-    inGroup += trianglesOf(queued_[i].call);
-    if (inGroup >= target && i + 1 < queued_.size()) {
-      queuedGroups_.push_back(i + 1);
-      inGroup = 0;
+  size_t draw = 0, drawStart = 0;  // queued_[draw]'s first triangle in the pass
+  for (size_t g = 0; g < groups; ++g) {
+    const size_t end = groupStart(g + 1);
+    for (size_t at = groupStart(g); at < end;) {
+      while (at >= drawStart + trianglesOf(queued_[draw].call)) drawStart += trianglesOf(queued_[draw++].call);
+      const size_t stop = std::min(end, drawStart + trianglesOf(queued_[draw].call));
+      queuedPieces_.push_back({.draw = draw, .first = at - drawStart, .last = stop - drawStart});
+      at = stop;
     }
+    queuedGroups_.push_back(queuedPieces_.size());
   }
-  queuedGroups_.push_back(queued_.size());
-  const size_t groups = queuedGroups_.size() - 1;
   if (queuedWs_.size() < groups) queuedWs_.resize(groups);
   // The caller's state may have been a temporary: the pending draw's copy stands in for it.
   for (QueuedAssembly& q : queued_) q.call.state = &pending_[q.pending].state;
+  const std::span<QueuedPiece> pieces(queuedPieces_);
+  auto piecesOf = [&](size_t g) { return pieces.subspan(queuedGroups_[g], queuedGroups_[g + 1] - queuedGroups_[g]); };
   pool_->run(int(groups), [&](int g) {
     AssemblyWorkspace& ws = queuedWs_[size_t(g)];
-    size_t triangles = 0;
-    for (size_t i = queuedGroups_[size_t(g)]; i < queuedGroups_[size_t(g) + 1]; ++i) triangles += trianglesOf(queued_[i].call);
-    startWorkspace(ws, triangles);
-    for (size_t i = queuedGroups_[size_t(g)]; i < queuedGroups_[size_t(g) + 1]; ++i) {
-      QueuedAssembly& q = queued_[i];
-      const size_t count = trianglesOf(q.call);
+    startWorkspace(ws, groupStart(size_t(g) + 1) - groupStart(size_t(g)));
+    for (QueuedPiece& piece : piecesOf(size_t(g))) {
+      const QueuedAssembly& q = queued_[piece.draw];
       // A large indexed draw shares its vertices among many triangles: each is worked out once.
       ws.corners = nullptr;
-      if (count > kAssemblyChunk) {
-        prepareCorners(q.call, q.planes, ws.ownCorners, nullptr);
+      if (piece.last - piece.first > kAssemblyChunk) {
+        prepareCorners(q.call, q.planes, ws.ownCorners, nullptr, piece.first, piece.last);
         ws.corners = &ws.ownCorners;
       }
-      appendTriangles(q.call, 0, count, q.planes, q.varyingCount, ws);
-      q.setupsEnd = ws.setups.size();
+      appendTriangles(q.call, piece.first, piece.last, q.planes, q.varyingCount, ws);
+      piece.setupsEnd = ws.setups.size();
     }
     ws.corners = nullptr;
   });
-  // Each group's setups take the next slice of the pending lists, filled on the threads with its
-  // draws' rows (27k pumpkin triangles a pass: a serial copy kept the other thread waiting).
+  // Each group's setups take the next slice of the pending lists, filled on the threads with the
+  // rows each piece spans (27k pumpkin triangles a pass: a serial copy kept the other thread
+  // waiting).
   std::vector<size_t>& groupFirst = queuedGroupFirst_;
   groupFirst.assign(groups + 1, pendingSetups_.size());
   for (size_t g = 0; g < groups; ++g) groupFirst[g + 1] = groupFirst[g] + queuedWs_[g].setups.size();
@@ -391,17 +402,41 @@ void Renderer::assembleQueued() {
     for (size_t k = 0; k < ws.setups.size(); ++k) pendingSetups_[groupFirst[g] + k] = &ws.setups[k];
     std::copy(ws.bounds.begin(), ws.bounds.end(), pendingBounds_.begin() + std::ptrdiff_t(groupFirst[g]));
     size_t next = 0;
-    for (size_t i = queuedGroups_[g]; i < queuedGroups_[g + 1]; ++i) {
-      PendingDraw& pending = pending_[queued_[i].pending];
-      pending.first = groupFirst[g] + next;
-      if (!finishPending(pending, queued_[i].setupsEnd - next)) {
-        pending.count = 0;  // nothing to rasterize: no band takes it
-        pending.minY = std::numeric_limits<int>::max();
-        pending.maxY = -1;
+    for (QueuedPiece& piece : piecesOf(g)) {
+      piece.minY = std::numeric_limits<int>::max();
+      piece.maxY = -1;
+      for (; next < piece.setupsEnd; ++next) {
+        piece.minY = std::min(piece.minY, ws.bounds[next].minY);
+        piece.maxY = std::max(piece.maxY, ws.bounds[next].maxY);
       }
-      next = queued_[i].setupsEnd;
     }
   });
+  // Each draw's setups: its pieces', consecutive in the pending lists.
+  for (size_t g = 0, last = queued_.size(); g < groups; ++g) {
+    size_t next = 0;
+    for (const QueuedPiece& piece : piecesOf(g)) {
+      PendingDraw& pending = pending_[queued_[piece.draw].pending];
+      if (piece.draw != last) {
+        pending.first = groupFirst[g] + next;
+        pending.count = 0;
+        pending.minY = std::numeric_limits<int>::max();
+        pending.maxY = -1;
+        last = piece.draw;
+      }
+      pending.count += piece.setupsEnd - next;
+      pending.minY = std::min(pending.minY, piece.minY);
+      pending.maxY = std::max(pending.maxY, piece.maxY);
+      next = piece.setupsEnd;
+    }
+  }
+  for (const QueuedAssembly& q : queued_) {
+    PendingDraw& pending = pending_[q.pending];
+    if (!settleRows(pending, pending.count, pending.minY, pending.maxY)) {
+      pending.count = 0;  // nothing to rasterize: no band takes it
+      pending.minY = std::numeric_limits<int>::max();
+      pending.maxY = -1;
+    }
+  }
   stats_.trianglesRasterized += groupFirst[groups] - groupFirst[0];
   for (size_t g = 0; g < groups; ++g) keepBlock(queuedWs_[g]);
   queued_.clear();

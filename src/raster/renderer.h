@@ -111,9 +111,11 @@ class Renderer {
     std::vector<WindowVertex> windowPolygon;
     RasterStats stats;
   };
-  // Fills `corners` for the call (on the pool's threads when given); leaves them empty for a draw
-  // without indices or with fewer indices than vertices.
-  static void prepareCorners(const DrawCall& call, const ClipPlanes& planes, VertexCorners& corners, ThreadPool* pool);
+  // Fills `corners` for the call's triangles [firstTriangle, lastTriangle) (on the pool's threads
+  // when given); leaves them empty for a draw without indices or with fewer of them there than
+  // vertices.
+  static void prepareCorners(const DrawCall& call, const ClipPlanes& planes, VertexCorners& corners, ThreadPool* pool,
+                             size_t firstTriangle, size_t lastTriangle);
   void assembleRange(const DrawCall& call, size_t first, size_t last, const ClipPlanes& planes, int varyingCount,
                      AssemblyWorkspace& ws) const;
   static void startWorkspace(AssemblyWorkspace& ws, size_t triangles);
@@ -137,6 +139,9 @@ class Renderer {
   bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
   void keepBlock(AssemblyWorkspace& ws);
   bool finishPending(PendingDraw& pending, size_t count) const;
+  // Fills in `pending`'s count and rows from the rows its setups span (minY: INT_MAX, maxY: -1 for
+  // none); false when it has nothing to rasterize.
+  static bool settleRows(PendingDraw& pending, size_t count, int minY, int maxY);
   // A draw whose assembly waits for the flush (DeferredDraws with Geometry::Kept): its call
   // (the state pointing at its pending draw's copy), clip planes, and its entry in pending_.
   struct QueuedAssembly {
@@ -144,7 +149,14 @@ class Renderer {
     ClipPlanes planes;
     int varyingCount = 0;
     size_t pending = 0;
-    size_t setupsEnd = 0;  // after assembly: the end of its setups in its group's workspace
+  };
+  // Triangles [first, last) of queued draw `draw`, assembled by one group: a group is a run of
+  // the pass's triangles, so a large draw (the pumpkins' lantern: 6012) is cut between groups.
+  struct QueuedPiece {
+    size_t draw = 0;
+    size_t first = 0, last = 0;
+    size_t setupsEnd = 0;     // after assembly: the end of its setups in its group's workspace
+    int minY = 0, maxY = -1;  // after assembly: the rows its setups span
   };
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();
@@ -195,7 +207,8 @@ class Renderer {
   int keptDepth_ = 0;  // of those, the DeferredDraws whose makers keep every draw's geometry
   std::vector<QueuedAssembly> queued_;
   std::vector<size_t> queuedGroupFirst_;  // group g's setups from pendingSetups_[queuedGroupFirst_[g]]
-  std::vector<size_t> queuedGroups_;  // assembleQueued's groups: [queuedGroups_[g], queuedGroups_[g + 1])
+  std::vector<QueuedPiece> queuedPieces_;
+  std::vector<size_t> queuedGroups_;  // assembleQueued's group g: pieces [queuedGroups_[g], queuedGroups_[g + 1])
   std::vector<AssemblyWorkspace> queuedWs_;
 };
 

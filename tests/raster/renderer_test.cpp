@@ -396,3 +396,107 @@ TEST_CASE("a renderer clear with no draw after it is done when the framebuffer i
   CHECK(fb.depthAt(63, 63) == 0.25);
   CHECK(fb.stencilAt(0, 0) == 7);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Queued assembly (DeferredDraws with Geometry::Kept): the pass's triangles are cut into groups
+// of shrinking length, a large draw between several of them.
+
+namespace {
+
+// A bumpy indexed grid of n × n quads in front of a perspective camera, its near corner behind
+// the near plane (clipped), with colour varyings; and a random soup of separate triangles.
+struct QueuedScene {
+  std::vector<ClipVertex> gridVertices, soupA, soupB;
+  std::vector<uint32_t> gridIndices;
+};
+
+QueuedScene makeQueuedScene(uint64_t seed) {
+  TestRandom rng(seed);
+  QueuedScene q;
+  const glm::dmat4 p = perspective(70.0, 1.25, 0.5, 50.0);
+  constexpr int n = 48;  // 4608 triangles: one draw much larger than the groups of 2 or 8 threads
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      ClipVertex v;
+      const double x = -6.0 + 12.0 * i / n, z = 0.2 - 14.0 * j / n;
+      v.position = p * glm::dvec4(x, -2.0 + rng.uniform(-0.6, 0.6), z, 1.0);
+      for (int k = 0; k < 4; ++k) v.varyings[size_t(k)] = rng.uniform(0.0, 1.0);
+      q.gridVertices.push_back(v);
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+      // Alternate windings: half the quads face away and are culled.
+      if ((i + j) % 3 == 0) q.gridIndices.insert(q.gridIndices.end(), {a, c, b, b, c, d});
+      else q.gridIndices.insert(q.gridIndices.end(), {a, b, c, b, d, c});
+    }
+  for (std::vector<ClipVertex>* soup : {&q.soupA, &q.soupB})
+    for (int t = 0; t < 3 * 40; ++t) {
+      ClipVertex v;
+      v.position = p * glm::dvec4(rng.uniform(-6, 6), rng.uniform(-5, 5), rng.uniform(-12, 1), 1.0);
+      for (int k = 0; k < 4; ++k) v.varyings[size_t(k)] = rng.uniform(0.0, 1.0);
+      soup->push_back(v);
+    }
+  return q;
+}
+
+// Soup A, the grid, soup B — with blending and stencil counting, so that the order of the
+// fragments at each pixel shows in the bytes — drawn one by one on one thread, or queued under a
+// DeferredDraws that keeps the geometry on `threads` threads. `reversed` swaps the soups.
+Framebuffer renderQueued(const QueuedScene& q, int threads, bool queued, bool reversed, RasterStats& stats) {
+  Framebuffer fb(160, 128);
+  RenderState s = fullViewportState(fb);
+  clearColor(fb, s, {0.1f, 0.2f, 0.3f, 0.4f});
+  clearDepth(fb, s, 1.0);
+  clearStencil(fb, s, 0);
+  s.cull = CullMode::Back;
+  s.depthFunc = CompareFunc::LEqual;
+  s.blend = {true, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha};
+  s.stencilTest = true;
+  for (StencilFaceState& f : s.stencil) {
+    f.func = CompareFunc::Always;
+    f.dppass = StencilOp::IncrWrap;
+    f.dpfail = StencilOp::Invert;
+  }
+  const ColorVaryingShader shader;
+  Renderer r(fb, threads);
+  {
+    std::optional<DeferredDraws> deferred;
+    if (queued) deferred.emplace(r, DeferredDraws::Geometry::Kept);
+    r.draw({.state = &s, .vertices = reversed ? q.soupB : q.soupA, .indices = {}, .shader = &shader});
+    r.draw({.state = &s, .vertices = q.gridVertices, .indices = q.gridIndices, .shader = &shader});
+    r.draw({.state = &s, .vertices = reversed ? q.soupA : q.soupB, .indices = {}, .shader = &shader});
+  }
+  stats = r.stats();
+  return fb;
+}
+
+}  // namespace
+
+TEST_CASE("queued draws cut into groups of triangles give the bytes and counts of drawing them one by one",
+          "[raster][threads]") {
+  for (uint64_t seed : {11u, 12u}) {
+    const QueuedScene q = makeQueuedScene(seed);
+    RasterStats referenceStats;
+    const Framebuffer reference = renderQueued(q, 1, false, false, referenceStats);
+    for (int threads : {2, 3, 8}) {
+      INFO("seed " << seed << ", " << threads << " threads");
+      RasterStats stats;
+      const Framebuffer fb = renderQueued(q, threads, true, false, stats);
+      CHECK(sameBytes(reference.color(), fb.color()));
+      CHECK(sameBytes(reference.depthCodes(), fb.depthCodes()));
+      CHECK(sameBytes(reference.stencil(), fb.stencil()));
+      CHECK(stats.trianglesRasterized == referenceStats.trianglesRasterized);
+      CHECK(stats.trianglesClipped == referenceStats.trianglesClipped);
+      CHECK(stats.trianglesCulled == referenceStats.trianglesCulled);
+      CHECK(stats.fragments == referenceStats.fragments);
+    }
+    // Not vacuous: the grid is clipped and half culled, and the order of the draws shows in the bytes.
+    CHECK(referenceStats.trianglesClipped > 0);
+    CHECK(referenceStats.trianglesCulled > 1000);
+    CHECK(referenceStats.fragments > 10000);
+    RasterStats reversedStats;
+    const Framebuffer reversed = renderQueued(q, 2, true, true, reversedStats);
+    CHECK_FALSE(sameBytes(reference.color(), reversed.color()));
+  }
+}
