@@ -20,6 +20,21 @@ double median(std::vector<double> v) {
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+// Where the threads' time went, per frame on average: inside the pool's runs (and how much of
+// the threads' time there went to tasks rather than waiting), and outside them, where the
+// calling thread works alone. What keeps two threads from twice the speed of one, apart from
+// each thread running slower when both run (memory, caches, the host).
+void printPoolTimes(const ThreadPool::Times& t, int threads, const std::vector<double>& frameMs) {
+  const double frames = double(frameMs.size());
+  double total = 0.0;
+  for (double ms : frameMs) total += ms;
+  const double busy = t.runMilliseconds > 0.0 ? 100.0 * t.taskMilliseconds / (threads * t.runMilliseconds) : 0.0;
+  std::printf("  in pool runs (mean)       %9.3f ms   %.1f runs a frame; the %d threads busy %.1f %% of it\n",
+              t.runMilliseconds / frames, double(t.runs) / frames, threads, busy);
+  std::printf("  outside runs (mean)       %9.3f ms   the calling thread alone\n",
+              std::max(0.0, total - t.runMilliseconds) / frames);
+}
 }  // namespace
 
 void addBenchCommand(CLI::App& app, BenchArgs& args) {
@@ -43,8 +58,12 @@ int runBench(const BenchArgs& args) {
   std::vector<double> frameMs;
   std::map<std::string, std::vector<double>> passMs;
   std::vector<std::string> passOrder;
+  const int threads = args.threads == 0 ? defaultThreadCount() : args.threads;
+  ThreadPool* pool = threadPoolForThisThread(threads);  // the one renderFrame's renderers use
+  ThreadPool::Times poolTimes;
   try {
     renderFrame(*scene, options);  // warm-up: page in buffers and code
+    if (pool) pool->timeRuns(true);
     for (int i = 0; i < args.frames; ++i) {
       const auto start = std::chrono::steady_clock::now();
       const FrameResult frame = renderFrame(*scene, options);
@@ -54,11 +73,14 @@ int runBench(const BenchArgs& args) {
         passMs[t.pass].push_back(t.milliseconds);
       }
     }
+    if (pool) {
+      poolTimes = pool->times();
+      pool->timeRuns(false);
+    }
   } catch (const std::exception& e) {
     std::cerr << "bench: " << e.what() << '\n';
     return kFailed;
   }
-  const int threads = args.threads == 0 ? defaultThreadCount() : args.threads;
   const std::string name = args.scene.scene.empty() ? "<builtin:room>" : args.scene.scene;
   if (args.csv) {
     std::printf("%s,%s,%d,%d,%d,%d,%.3f\n", name.c_str(), shadowref::name(method), threads, scene->width, scene->height,
@@ -69,6 +91,7 @@ int runBench(const BenchArgs& args) {
               scene->height, threads, threads == 1 ? "" : "s", args.frames);
   std::printf("  frame (median)            %9.3f ms\n", median(frameMs));
   for (const std::string& pass : passOrder) std::printf("  %-25s %9.3f ms\n", pass.c_str(), median(passMs[pass]));
+  if (pool) printPoolTimes(poolTimes, threads, frameMs);
   return kSuccess;
 }
 

@@ -7,6 +7,10 @@
 namespace shadowref {
 
 namespace {
+int64_t nanosecondsNow() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 // How long an idle worker spins before it sleeps: longer than the serial work between two
 // rasterizations (building a pass's volumes, setting up its triangles), so that the worker is
 // there when the bands are handed out; short enough not to hold a core between frames.
@@ -64,11 +68,17 @@ void ThreadPool::drain(uint32_t generation) {
       return;
     if (!ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel)) continue;
     // The claimed task belongs to this run, which cannot end before it is done: task_ is its.
+    const bool timing = timing_.load(std::memory_order_relaxed);
+    const int64_t start = timing ? nanosecondsNow() : 0;
     try {
       (*task_.load(std::memory_order_relaxed))(int(ticket & 0xFFFFFFFFu));
     } catch (...) {
       std::lock_guard lock(mutex_);
       if (!error_) error_ = std::current_exception();
+    }
+    if (timing) {
+      taskNanoseconds_.fetch_add(nanosecondsNow() - start, std::memory_order_relaxed);
+      tasks_.fetch_add(1, std::memory_order_relaxed);
     }
     done_.fetch_add(1, std::memory_order_release);
     ticket = ticket_.load(std::memory_order_acquire);
@@ -101,7 +111,21 @@ void ThreadPool::workerLoop() {
   }
 }
 
+void ThreadPool::timeRuns(bool on) {
+  runs_ = 0;
+  tasks_ = 0;
+  runNanoseconds_ = 0;
+  taskNanoseconds_ = 0;
+  timing_ = on;
+}
+
+ThreadPool::Times ThreadPool::times() const {
+  return {runs_.load(), tasks_.load(), double(runNanoseconds_.load()) * 1e-6, double(taskNanoseconds_.load()) * 1e-6};
+}
+
 void ThreadPool::run(int count, const std::function<void(int)>& task) {
+  const bool timing = timing_.load(std::memory_order_relaxed);
+  const int64_t start = timing ? nanosecondsNow() : 0;
   if (workers_.empty() || count <= 1) {
     std::exception_ptr error;
     for (int i = 0; i < count; ++i) {
@@ -110,6 +134,13 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
       } catch (...) {
         if (!error) error = std::current_exception();
       }
+    }
+    if (timing) {  // the caller's tasks, one after another: each as long as the run's share
+      const int64_t elapsed = nanosecondsNow() - start;
+      runNanoseconds_ += elapsed;
+      taskNanoseconds_ += elapsed;
+      runs_ += 1;
+      tasks_ += count;
     }
     if (error) std::rethrow_exception(error);
     return;
@@ -130,6 +161,10 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
   }
   drain(generation);
   for (int step = 0; done_.load(std::memory_order_acquire) < count; ++step) relax(step);
+  if (timing) {
+    runNanoseconds_ += nanosecondsNow() - start;
+    runs_ += 1;
+  }
   std::exception_ptr error;
   {
     std::lock_guard lock(mutex_);

@@ -36,6 +36,18 @@ class ThreadPool {
   // reentrant: one run at a time, from one thread.
   void run(int count, const std::function<void(int)>& task);
 
+  // What the runs cost while timing is on: the caller's time inside run() and the threads' time
+  // inside tasks. Tasks run within their run and each thread runs one at a time, so task time is
+  // at most threadCount() × run time; the rest is time a thread of a run waited — for work to
+  // start, or for the last task of another thread (`shadowref bench` prints the share). Off by
+  // default: two clock reads a task.
+  struct Times {
+    int64_t runs = 0, tasks = 0;
+    double runMilliseconds = 0.0, taskMilliseconds = 0.0;
+  };
+  void timeRuns(bool on);  // and starts the times from zero
+  Times times() const;
+
  private:
   void workerLoop();
   // Claims and runs tasks of run number `generation` until none is left.
@@ -56,6 +68,8 @@ class ThreadPool {
   std::atomic<const std::function<void(int)>*> task_{nullptr};
   std::atomic<int> count_{0};
   std::exception_ptr error_;  // the first exception of the current run, under mutex_
+  std::atomic<bool> timing_{false};
+  std::atomic<int64_t> runs_{0}, tasks_{0}, runNanoseconds_{0}, taskNanoseconds_{0};
 };
 
 // Runs task(i) for i in [0, count), on several threads or on this one (Renderer::parallelFor); an

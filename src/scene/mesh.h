@@ -8,12 +8,13 @@
 #pragma once
 
 #include <cstdint>
-#include <cstring>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 namespace shadowref {
 
@@ -61,12 +62,18 @@ struct Mesh {
   Aabb bounds;  // object space
 };
 
-// The triangles as one flat index list, three per triangle, as draw calls take them: one copy
-// of the block (a glm::uvec3 is three uint32_t without padding).
-inline void copyTriangleIndices(const Mesh& mesh, std::vector<uint32_t>& out) {
+// The triangles as one flat index list, three per triangle, as draw calls take them, read in
+// place: a glm::uvec3 is three uint32_t without padding (glm::value_ptr's view of a vector).
+inline std::span<const uint32_t> triangleIndices(const Mesh& mesh) {
   static_assert(sizeof(glm::uvec3) == 3 * sizeof(uint32_t));
-  out.resize(3 * mesh.triangles.size());
-  std::memcpy(out.data(), mesh.triangles.data(), out.size() * sizeof(uint32_t));
+  if (mesh.triangles.empty()) return {};
+  return {glm::value_ptr(mesh.triangles.front()), 3 * mesh.triangles.size()};
+}
+
+// The same list copied, for a caller that adds to it.
+inline void copyTriangleIndices(const Mesh& mesh, std::vector<uint32_t>& out) {
+  const std::span<const uint32_t> indices = triangleIndices(mesh);
+  out.assign(indices.begin(), indices.end());
 }
 
 }  // namespace shadowref

@@ -75,7 +75,7 @@ std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& inst
     normalMatrices[i] = glm::transpose(glm::inverse(glm::dmat3(inst.world)));
     counts[i] = inst.mesh->positions.size();
     p.vertices.resize(counts[i]);  // constructed by prepareVertices
-    copyTriangleIndices(*inst.mesh, p.indices);
+    p.indices = triangleIndices(*inst.mesh);
   }
   forEachVertexRange(renderer, counts, [&](size_t i, size_t first, size_t last) {
     prepareVertices(out[i], normalMatrices[i], first, last);

@@ -24,7 +24,7 @@ struct PreparedInstance {
   int index = 0;                 // position in the scene's instance list (pixel-history tag)
   VertexTransform transform;     // object -> clip; shadow volumes of this instance must use it too
   ClipVertexBuffer vertices;
-  std::vector<uint32_t> indices;
+  std::span<const uint32_t> indices;  // the mesh's own (triangleIndices)
 };
 
 // The state to draw an instance with: `state` itself, or for a mirrored instance (det(world) < 0,

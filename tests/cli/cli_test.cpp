@@ -117,6 +117,21 @@ TEST_CASE("compare exits 0 for identical images, 1 when they differ, 2 when one 
   CHECK(run("compare '" + a + "' '" + (dir / "missing.exr").string() + "'").status == 2);
 }
 
+TEST_CASE("bench prints the frame, each pass, and with threads where their time went", "[cli]") {
+  const std::string scene = "scenes/minimal.yaml -D image.width=64 -D image.height=48";
+  const Run one = run("bench " + scene + " --frames 2 --threads 1");
+  CHECK(one.status == 0);
+  CHECK(one.out.find("frame (median)") != std::string::npos);
+  CHECK(one.out.find("01-ambient") != std::string::npos);
+  CHECK(one.out.find("in pool runs") == std::string::npos);  // one thread: no pool
+  const Run two = run("bench " + scene + " --frames 2 --threads 2");
+  CHECK(two.status == 0);
+  CHECK(two.out.find("in pool runs (mean)") != std::string::npos);
+  CHECK(two.out.find("the 2 threads busy") != std::string::npos);
+  CHECK(two.out.find("outside runs (mean)") != std::string::npos);
+  CHECK(run("bench " + scene + " --frames 0").status != 0);
+}
+
 TEST_CASE("the --help text lists every subcommand and exits 0", "[cli]") {
   const Run r = run("--help");
   CHECK(r.status == 0);

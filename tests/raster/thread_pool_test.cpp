@@ -2,6 +2,7 @@
 // other without a late worker taking a task of the next one, and a task's exception reaches the
 // caller of run() after the other tasks have finished.
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -81,4 +82,28 @@ TEST_CASE("a thread keeps one pool per thread count for its renderers, another t
   Renderer a(fb, 2), b(fb, 2);
   CHECK(a.threads() == 2);
   CHECK(b.threads() == 2);
+}
+
+TEST_CASE("the pool's timers: runs, tasks, and task time within the threads' run time", "[raster][threads]") {
+  using namespace std::chrono_literals;
+  for (int threads : {1, 2, 3}) {
+    INFO(threads << " threads");
+    ThreadPool pool(threads);
+    pool.run(4, [](int) { std::this_thread::sleep_for(1ms); });  // not timed: timing is off
+    CHECK(pool.times().runs == 0);
+    pool.timeRuns(true);
+    pool.run(6, [](int) { std::this_thread::sleep_for(10ms); });
+    pool.run(1, [](int) { std::this_thread::sleep_for(5ms); });  // on the calling thread alone
+    const ThreadPool::Times t = pool.times();
+    CHECK(t.runs == 2);
+    CHECK(t.tasks == 7);
+    // Each task slept at least its time; the tasks ran inside their runs, one at a time per thread.
+    CHECK(t.taskMilliseconds >= 65.0);
+    CHECK(t.taskMilliseconds <= threads * t.runMilliseconds);
+    // Six tasks of 10 ms on `threads` threads take at least ceil(6 / threads) × 10 ms, plus 5.
+    CHECK(t.runMilliseconds >= 10.0 * ((6 + threads - 1) / threads) + 5.0);
+    pool.timeRuns(false);
+    pool.run(2, [](int) {});
+    CHECK(pool.times().runs == 0);  // turned off: started from zero and not counting
+  }
 }
