@@ -38,7 +38,7 @@ void printPoolTimes(const ThreadPool::Times& t, int threads, const std::vector<d
 }  // namespace
 
 void addBenchCommand(CLI::App& app, BenchArgs& args) {
-  CLI::App* bench = app.add_subcommand("bench", "Render a scene several times; print the median time per frame and pass");
+  CLI::App* bench = app.add_subcommand("bench", "Render a scene several times; print the median time per frame and pass, and with threads the time in and outside the pool's runs");
   bench->add_option("scene", args.scene.scene, "Scene file (YAML); omitted: the built-in room");
   bench->add_option("--method", args.method, "Shadow method: " + shadowMethodNames());
   bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(CLI::Range(1, 10000));
