@@ -341,6 +341,12 @@ struct Measured {
   double cpuMedian() const { return bench::median(cpuRunMedians); }
   double min() const { return *std::min_element(runMedians.begin(), runMedians.end()); }
   double cpuMin() const { return *std::min_element(cpuRunMedians.begin(), cpuRunMedians.end()); }
+  void add(const Measured& more) {  // another round's runs of the same configuration
+    runMedians.insert(runMedians.end(), more.runMedians.begin(), more.runMedians.end());
+    cpuRunMedians.insert(cpuRunMedians.end(), more.cpuRunMedians.begin(), more.cpuRunMedians.end());
+    crossCore.insert(crossCore.end(), more.crossCore.begin(), more.crossCore.end());
+    renderer = more.renderer;
+  }
   double max() const { return *std::max_element(runMedians.begin(), runMedians.end()); }
 };
 
@@ -687,13 +693,7 @@ std::vector<std::vector<Measured>> measureSeries(const std::vector<SceneCase>& c
     for (size_t j = 0; j < cases.size(); ++j) {
       const size_t i = round % 2 == 0 ? j : cases.size() - 1 - j;
       const std::vector<Measured> r = measure(cases[i], configs, oneRound, round);
-      for (size_t k = 0; k < configs.size(); ++k) {
-        Measured& into = m[i][k];
-        into.runMedians.insert(into.runMedians.end(), r[k].runMedians.begin(), r[k].runMedians.end());
-        into.cpuRunMedians.insert(into.cpuRunMedians.end(), r[k].cpuRunMedians.begin(), r[k].cpuRunMedians.end());
-        into.crossCore.insert(into.crossCore.end(), r[k].crossCore.begin(), r[k].crossCore.end());
-        into.renderer = r[k].renderer;
-      }
+      for (size_t k = 0; k < configs.size(); ++k) m[i][k].add(r[k]);
     }
   }
   return m;

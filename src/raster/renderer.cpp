@@ -306,13 +306,25 @@ void Renderer::keepBlock(AssemblyWorkspace& ws) {
 
 // `pending`'s setups are the `count` from pendingSetups_[pending.first]: fills in its count and rows;
 // false when it has nothing to rasterize.
-bool Renderer::finishPending(PendingDraw& pending, size_t count) const {
+namespace {
+// The rows a run of setups' bounds spans: minY INT_MAX and maxY -1 for none (settleRows' "none").
+struct SpannedRows {
   int minY = std::numeric_limits<int>::max(), maxY = -1;
-  for (size_t i = pending.first; i < pending.first + count; ++i) {
-    minY = std::min(minY, pendingBounds_[i].minY);
-    maxY = std::max(maxY, pendingBounds_[i].maxY);
+};
+template <class Bounds>
+SpannedRows rowsSpanned(std::span<const Bounds> bounds) {
+  SpannedRows rows;
+  for (const Bounds& b : bounds) {
+    rows.minY = std::min(rows.minY, b.minY);
+    rows.maxY = std::max(rows.maxY, b.maxY);
   }
-  return settleRows(pending, count, minY, maxY);
+  return rows;
+}
+}  // namespace
+
+bool Renderer::finishPending(PendingDraw& pending, size_t count) const {
+  const SpannedRows rows = rowsSpanned(std::span(pendingBounds_).subspan(pending.first, count));
+  return settleRows(pending, count, rows.minY, rows.maxY);
 }
 
 bool Renderer::settleRows(PendingDraw& pending, size_t count, int minY, int maxY) {
@@ -403,12 +415,10 @@ void Renderer::assembleQueued() {
     std::copy(ws.bounds.begin(), ws.bounds.end(), pendingBounds_.begin() + std::ptrdiff_t(groupFirst[g]));
     size_t next = 0;
     for (QueuedPiece& piece : piecesOf(g)) {
-      piece.minY = std::numeric_limits<int>::max();
-      piece.maxY = -1;
-      for (; next < piece.setupsEnd; ++next) {
-        piece.minY = std::min(piece.minY, ws.bounds[next].minY);
-        piece.maxY = std::max(piece.maxY, ws.bounds[next].maxY);
-      }
+      const SpannedRows rows = rowsSpanned(std::span(ws.bounds).subspan(next, piece.setupsEnd - next));
+      piece.minY = rows.minY;
+      piece.maxY = rows.maxY;
+      next = piece.setupsEnd;
     }
   });
   // Each draw's setups: its pieces', consecutive in the pending lists.

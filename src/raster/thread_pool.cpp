@@ -119,6 +119,13 @@ void ThreadPool::timeRuns(bool on) {
   timing_ = on;
 }
 
+int64_t ThreadPool::recordRun(int64_t start) {
+  const int64_t elapsed = nanosecondsNow() - start;
+  runNanoseconds_ += elapsed;
+  runs_ += 1;
+  return elapsed;
+}
+
 ThreadPool::Times ThreadPool::times() const {
   return {runs_.load(), tasks_.load(), double(runNanoseconds_.load()) * 1e-6, double(taskNanoseconds_.load()) * 1e-6};
 }
@@ -135,11 +142,9 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
         if (!error) error = std::current_exception();
       }
     }
-    if (timing) {  // the caller's tasks, one after another: each as long as the run's share
-      const int64_t elapsed = nanosecondsNow() - start;
-      runNanoseconds_ += elapsed;
+    if (timing) {  // the caller's tasks, one after another, are the whole run
+      const int64_t elapsed = recordRun(start);
       taskNanoseconds_ += elapsed;
-      runs_ += 1;
       tasks_ += count;
     }
     if (error) std::rethrow_exception(error);
@@ -161,10 +166,7 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
   }
   drain(generation);
   for (int step = 0; done_.load(std::memory_order_acquire) < count; ++step) relax(step);
-  if (timing) {
-    runNanoseconds_ += nanosecondsNow() - start;
-    runs_ += 1;
-  }
+  if (timing) recordRun(start);
   std::exception_ptr error;
   {
     std::lock_guard lock(mutex_);

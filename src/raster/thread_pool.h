@@ -53,6 +53,8 @@ class ThreadPool {
   // Claims and runs tasks of run number `generation` until none is left.
   void drain(uint32_t generation);
   uint32_t waitForWork(uint32_t seen);
+  // Adds a run that began at `start` (nanoseconds) to the times; returns its length.
+  int64_t recordRun(int64_t start);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
