@@ -45,6 +45,7 @@ void Renderer::useReferencePath(bool on) { referencePathForNewRenderers = on; }
 Renderer::Renderer(Framebuffer& framebuffer, int threads)
     : fb_(framebuffer), referencePath_(referencePathForNewRenderers) {
   setThreads(threads);
+  rowWork_.reset(fb_.height());
 }
 
 Renderer::~Renderer() {
@@ -408,19 +409,26 @@ void Renderer::assembleQueued() {
   for (size_t g = 0; g < groups; ++g) groupFirst[g + 1] = groupFirst[g] + queuedWs_[g].setups.size();
   pendingSetups_.resize(groupFirst[groups]);
   pendingBounds_.resize(groupFirst[groups]);
+  if (queuedRowWork_.size() < groups) queuedRowWork_.resize(groups);
   pool_->run(int(groups), [&](int gi) {
     const size_t g = size_t(gi);
     const AssemblyWorkspace& ws = queuedWs_[g];
     for (size_t k = 0; k < ws.setups.size(); ++k) pendingSetups_[groupFirst[g] + k] = &ws.setups[k];
     std::copy(ws.bounds.begin(), ws.bounds.end(), pendingBounds_.begin() + std::ptrdiff_t(groupFirst[g]));
+    RowWork& work = queuedRowWork_[g].work;
+    work.reset(fb_.height());
     size_t next = 0;
     for (QueuedPiece& piece : piecesOf(g)) {
-      const SpannedRows rows = rowsSpanned(std::span(ws.bounds).subspan(next, piece.setupsEnd - next));
+      const std::span<const SetupBounds> bounds = std::span(ws.bounds).subspan(next, piece.setupsEnd - next);
+      const SpannedRows rows = rowsSpanned(bounds);
       piece.minY = rows.minY;
       piece.maxY = rows.maxY;
+      const Rect& region = pending_[queued_[piece.draw].pending].region;
+      for (const SetupBounds& t : bounds) work.addTriangle(t.minX, t.minY, t.maxX, t.maxY, region);
       next = piece.setupsEnd;
     }
   });
+  queuedRowWorkCount_ = groups;
   // Each draw's setups: its pieces', consecutive in the pending lists.
   for (size_t g = 0, last = queued_.size(); g < groups; ++g) {
     size_t next = 0;
@@ -441,6 +449,7 @@ void Renderer::assembleQueued() {
   }
   for (const QueuedAssembly& q : queued_) {
     PendingDraw& pending = pending_[q.pending];
+    pending.workCounted = true;
     if (!settleRows(pending, pending.count, pending.minY, pending.maxY)) {
       pending.count = 0;  // nothing to rasterize: no band takes it
       pending.minY = std::numeric_limits<int>::max();
@@ -546,58 +555,23 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
   for (int i = 0; i < count; ++i) task(i);
 }
 
-// Cuts rows [minY, maxY] into at most maxBands bands, each at least kMinBandRows rows (unless all
-// of them are fewer): fills bandFirstRow_ (band b is rows [bandFirstRow_[b], bandFirstRow_[b + 1])),
-// returns the count. The threads take the bands in order, so the bands get
-// shrinking shares of the estimated work — maxBands + 1, maxBands, … 2 parts — and the last ones,
-// small, even out the threads' ends. A row's work is estimated as its pixels in the pending
-// triangles' bounding boxes and a quarter of its cleared pixels, plus a row's and a triangle's
-// fixed costs in pixels: the city's shadow volumes crowd into the lower rows, and equal rows would
-// leave one thread most of them.
+// Cuts rows [minY, maxY] into bands (RowWork::split) by each row's estimated work: its pixels in
+// the pending triangles' bounding boxes and a quarter of its cleared pixels, plus a row's and a
+// triangle's fixed costs. The queued draws' triangles were counted on the threads
+// (assembleQueued); the others are counted here.
 int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
-  constexpr int64_t kRowCost = 8, kTriangleCost = 64;
-  const size_t rows = size_t(maxY - minY + 1);
-  rowWork_.assign(rows + 1, 0);  // differences: each triangle adds to its rows
-  rowStart_.assign(rows, 0);     // what each triangle adds once, on its first row
-  for (const PendingDraw& draw : pending_) {
-    const int x0 = draw.region.x, x1 = draw.region.x + draw.region.width - 1;
+  for (size_t g = 0; g < queuedRowWorkCount_; ++g) rowWork_.add(queuedRowWork_[g].work);
+  queuedRowWorkCount_ = 0;
+  for (PendingDraw& draw : pending_) {
+    if (draw.workCounted) continue;
     for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
       const SetupBounds& t = pendingBounds_[i];
-      const int top = std::min(t.maxY, draw.maxY), bottom = std::max(t.minY, draw.minY);
-      const int64_t width = std::min(t.maxX, x1) - std::max(t.minX, x0) + 1;
-      if (bottom > top || width <= 0) continue;
-      rowWork_[size_t(bottom - minY)] += width + kRowCost;
-      rowWork_[size_t(top - minY) + 1] -= width + kRowCost;
-      rowStart_[size_t(bottom - minY)] += kTriangleCost;
+      rowWork_.addTriangle(t.minX, t.minY, t.maxX, t.maxY, draw.region);
     }
+    draw.workCounted = true;
   }
-  for (const PendingClear& c : pendingClears_) {  // a cleared row costs about a quarter of a drawn one
-    const Rect& r = c.region;
-    if (r.width == 0 || r.height == 0) continue;
-    rowWork_[size_t(r.y - minY)] += r.width / 4 + kRowCost;
-    rowWork_[size_t(r.y + r.height - minY)] -= r.width / 4 + kRowCost;
-  }
-  int64_t total = 0;
-  for (size_t r = 0; r < rows; ++r) {
-    if (r > 0) rowWork_[r] += rowWork_[r - 1];
-    total += rowWork_[r] + rowStart_[r] + 1;  // + 1: no row is free, and no band is of no rows
-  }
-  const int64_t parts = int64_t(maxBands) * (maxBands + 3) / 2;  // (maxBands + 1) + … + 2
-  bandFirstRow_.assign(1, minY);
-  int64_t done = 0, partsUpTo = maxBands + 1;  // the parts of bands 0 … the current one
-  size_t start = 0;
-  for (size_t r = 0; r < rows; ++r) {
-    done += rowWork_[r] + rowStart_[r] + 1;
-    const int band = int(bandFirstRow_.size()) - 1;
-    const bool full = done * parts >= total * partsUpTo;  // this band has its share
-    if (full && r + 1 - start >= size_t(kMinBandRows) && rows - (r + 1) >= size_t(kMinBandRows) && band + 1 < maxBands) {
-      bandFirstRow_.push_back(minY + int(r) + 1);
-      start = r + 1;
-      partsUpTo += maxBands - band;  // band + 1's share: maxBands + 1 - (band + 1)
-    }
-  }
-  bandFirstRow_.push_back(maxY + 1);
-  return int(bandFirstRow_.size()) - 1;
+  for (const PendingClear& c : pendingClears_) rowWork_.addClear(c.region);
+  return rowWork_.split(minY, maxY, maxBands, kMinBandRows, bandFirstRow_);
 }
 
 void Renderer::flush() {
@@ -645,6 +619,8 @@ void Renderer::clearPending() {
   pendingSetups_.clear();
   pendingBounds_.clear();
   pendingBlocks_.clear();
+  rowWork_.reset(fb_.height());
+  queuedRowWorkCount_ = 0;
   for (AssemblyWorkspace& ws : assembly_) ws.clippedVertices.clear();
   for (AssemblyWorkspace& ws : queuedWs_) ws.clippedVertices.clear();
 }

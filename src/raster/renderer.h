@@ -16,6 +16,7 @@
 #include "raster/framebuffer.h"
 #include "raster/raster_stats.h"
 #include "raster/render_state.h"
+#include "raster/row_work.h"
 #include "raster/thread_pool.h"
 #include "raster/triangle_setup.h"
 #include "raster/vertex.h"
@@ -134,6 +135,7 @@ class Renderer {
     Rect region;          // drawRegion of the state
     size_t first = 0, count = 0;  // its setups in pendingSetups_
     int minY = 0, maxY = -1;      // the rows its triangles may touch
+    bool workCounted = false;     // its setups are in rowWork_ (assembleQueued counted them)
   };
   friend class DeferredDraws;
   bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
@@ -201,7 +203,7 @@ class Renderer {
   std::vector<SetupBlock> pendingBlocks_;  // the setups, as assembly made them
   std::vector<PendingClear> pendingClears_;
   int splitIntoBands(int minY, int maxY, int maxBands);
-  std::vector<int64_t> rowWork_, rowStart_;  // per row: the estimate splitIntoBands balances
+  RowWork rowWork_;  // the pending draws' and clears' (those counted so far), which the bands share
   std::vector<int> bandFirstRow_;    // band b: rows [bandFirstRow_[b], bandFirstRow_[b + 1])
   int deferDepth_ = 0;
   int keptDepth_ = 0;  // of those, the DeferredDraws whose makers keep every draw's geometry
@@ -210,6 +212,13 @@ class Renderer {
   std::vector<QueuedPiece> queuedPieces_;
   std::vector<size_t> queuedGroups_;  // assembleQueued's group g: pieces [queuedGroups_[g], queuedGroups_[g + 1])
   std::vector<AssemblyWorkspace> queuedWs_;
+  // Each queued group's setups counted into the rows' work on the group's thread (27k pumpkin
+  // triangles a pass were counted on the calling thread), added to rowWork_ when the flush splits.
+  struct alignas(128) GroupRowWork {
+    RowWork work;
+  };
+  std::vector<GroupRowWork> queuedRowWork_;
+  size_t queuedRowWorkCount_ = 0;  // groups of this flush not yet added to rowWork_
 };
 
 // While one of these lives, the renderer's draws are only set up; when the last one ends, all of
