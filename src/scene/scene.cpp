@@ -18,10 +18,12 @@ Aabb transformBounds(const Aabb& box, const glm::dmat4& m) {
 }
 
 // 000 §4.1.1: the scene graph, flattened depth-first; a child's world matrix is parent * local.
-void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, const std::string& parentPath,
+// parentPath nullptr: no paths (Scene::Paths::Omitted).
+void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, const std::string* parentPath,
              std::vector<Instance>& out) {
   const glm::dmat4 world = parent * node.local;
-  const std::string path = parentPath.empty() ? node.name : parentPath + "/" + node.name;
+  std::string path;
+  if (parentPath) path = parentPath->empty() ? node.name : *parentPath + "/" + node.name;
   if (node.mesh >= 0 && node.mesh < static_cast<int>(scene.meshes.size())) {
     Instance inst;
     inst.path = path;
@@ -37,7 +39,7 @@ void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, con
     inst.mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
     out.push_back(std::move(inst));
   }
-  for (const Node& child : node.children) flatten(scene, child, world, path, out);
+  for (const Node& child : node.children) flatten(scene, child, world, parentPath ? &path : nullptr, out);
 }
 
 }  // namespace
@@ -52,9 +54,10 @@ Aabb worldBounds(const std::vector<Instance>& instances) {
   return box;
 }
 
-std::vector<Instance> Scene::instances() const {
+std::vector<Instance> Scene::instances(Paths paths) const {
   std::vector<Instance> out;
-  for (const Node& root : roots) flatten(*this, root, glm::dmat4(1.0), "", out);
+  const std::string rootPath;
+  for (const Node& root : roots) flatten(*this, root, glm::dmat4(1.0), paths == Paths::Built ? &rootPath : nullptr, out);
   return out;
 }
 

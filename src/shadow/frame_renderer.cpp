@@ -34,7 +34,7 @@ class PassClock {
 // No shadows: every light in one pass, with the ambient term.
 void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResult& result, Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
-  const std::vector<Instance> instances = scene.instances();
+  const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
   const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &renderer);
   RenderState state;
   state.viewport = view.viewport;

@@ -184,7 +184,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
                          Renderer& renderer) {
   // Volumes reach infinity: P_inf, no far clipping (000 §3.3).
   const SceneView view = makeCameraView(scene, true);
-  const std::vector<Instance> instances = scene.instances();
+  const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
   const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &renderer);
   Framebuffer& fb = renderer.framebuffer();
   int passCounter = 0;
