@@ -14,6 +14,7 @@
 
 #include "raster/clamp_unit.h"
 #include "raster/compare_dispatch.h"
+#include "raster/depth_lanes.h"
 #include "raster/fragment_ops.h"
 #include "raster/rasterizer.h"
 
@@ -213,15 +214,16 @@ inline v8b lowBytes(v8u x) {
 }
 
 // How a triangle's rows make depth codes, fixed at compile time so that the eight-pixel steps test
-// nothing: Encoded, through DepthCodec::encode lane by lane (Unorm24) or after depth clamping;
+// nothing: Encoded, DepthCodec::encode in vector lanes (encodeLanes) for a Unorm24 buffer or after
+// depth clamping (the focused trapezoidal maps);
 // PlainFloat, a float32 buffer without depth clamping (the usual case), encode's clamp to [0, 1]
 // in vector lanes; UnitFloat, the same where every depth of the triangle is in (0, 1]
 // (TriangleSetup::depthsInUnit), so that the clamp would change nothing and is left out.
 enum class RowKind { Encoded, PlainFloat, UnitFloat };
 
 // The depth codes of a row: fragmentDepth and DepthCodec::encode with the same operations in the
-// same order (planeDepthAt's sum split into its row part and its column part), four pixels at a
-// time or one. Float32 codes are made in vector lanes; Unorm24's rounding lane by lane.
+// same order (planeDepthAt's sum split into its row part and its column part), eight or four
+// pixels at a time, or one.
 template <RowKind K>
 struct RowDepth {
   static constexpr bool kPlainFloat = K != RowKind::Encoded;
@@ -246,11 +248,11 @@ struct RowDepth {
     if constexpr (K == RowKind::UnitFloat) {
       const v4f f = __builtin_convertvector(z, v4f);
       std::memcpy(&out, &f, sizeof out);
-    } else if (kPlainFloat || codec.format == DepthFormat::Float32) {
+    } else if constexpr (kPlainFloat) {
       const v4f f = __builtin_convertvector(clampUnitOrZero(z), v4f);  // encode's clamp
       std::memcpy(&out, &f, sizeof out);
     } else {
-      for (int i = 0; i < 4; ++i) out[i] = codec.encode(z[i]);
+      out = encodeLanes(codec, z);
     }
     return out;
   }
@@ -318,14 +320,18 @@ struct RowDepth {
   // The codes of eight pixels from their dzdx * (centre - fx0), the eight doubles at `slopes`
   // (the column part of the depth, the same for every row of a triangle: columnDepthParts).
   v8u codes8(const double* slopes) const {
-    if constexpr (!kPlainFloat) {  // code()'s steps lane by lane
-      v8u out;
-      for (int i = 0; i < 8; ++i) {
-        double z = (z0 + (slopes[i] + rowPart)) + offset;
-        if (clamp) z = std::clamp(z, lo, hi);
-        out[i] = codec.encode(z);
+    if constexpr (!kPlainFloat) {  // code()'s steps in two halves of four lanes
+      v4d a, b;
+      std::memcpy(&a, slopes, sizeof a);
+      std::memcpy(&b, slopes + 4, sizeof b);
+      a = (z0 + (a + rowPart)) + offset;
+      b = (z0 + (b + rowPart)) + offset;
+      if (clamp) {  // std::clamp
+        a = a < lo ? v4d{} + lo : (hi < a ? v4d{} + hi : a);
+        b = b < lo ? v4d{} + lo : (hi < b ? v4d{} + hi : b);
       }
-      return out;
+      const v4u low = encodeLanes(codec, a), high = encodeLanes(codec, b);
+      return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
     } else {
 #if defined(__AVX512F__)
       ClampLanes8 d;
@@ -519,7 +525,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     });
     for (int lane = 0; lane < 8; ++lane) rowsFragments += uint64_t(covered8[lane]);
   } else {
-    const double* slopes = RowDepth<K>::kPlainFloat ? columnDepthParts(t, region, width) : nullptr;
+    const double* slopes = columnDepthParts(t, region, width);
     rasterizeRowSpans(t, region, [&, depth, hasDepth, width, slopes](int y, int xl, int xr) {
       const size_t rowStart = size_t(y) * size_t(width);
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
