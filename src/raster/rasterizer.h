@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <cstring>
 
@@ -203,24 +204,37 @@ inline bool isNarrow(const TriangleSetup& t, const Rect& region, int bufferWidth
 // top. Requires isNarrow(t, region, bufferWidth).
 template <class RowSink>
 void rasterizeNarrowRows(const TriangleSetup& t, const Rect& region, int bufferWidth, RowSink&& sink) {
-  using Edges = int64_t __attribute__((vector_size(8 * kNarrowColumns)));
+  // The edge values in two halves of four 64-bit lanes (GCC lowers a vector of eight lane by lane
+  // for AVX2). A lane is covered when its three values are >= 0, that is when their OR is, whose
+  // sign is its high 32-bit word's: the eight high words, side by side, are the eight lanes' test.
+  using Half = int64_t __attribute__((vector_size(32)));
+  using Words = int32_t __attribute__((vector_size(32)));
+  static_assert(kNarrowColumns == 8, "two halves of four lanes");
   const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
   const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
   if (x0 > x1 || y0 > y1) return;
   const int window = std::min(x0, bufferWidth - kNarrowColumns);
-  const Edges lane = {0, 1, 2, 3, 4, 5, 6, 7};
-  static_assert(kNarrowColumns == 8, "the lane list above");
-  const Edges column = window + lane;
-  const Edges inColumns = (column >= x0) & (column <= x1);
-  Edges e[3];
-  for (int i = 0; i < 3; ++i) e[i] = (t.edgeAt(i, window, y0) + t.bias[i]) + t.stepX[i] * lane;
+  const NarrowLanes column = window + NarrowLanes{0, 1, 2, 3, 4, 5, 6, 7};
+  const NarrowLanes inColumns = (column >= x0) & (column <= x1);
+  Half low[3], high[3];
+  for (int i = 0; i < 3; ++i) {
+    const int64_t first = t.edgeAt(i, window, y0) + t.bias[i];
+    low[i] = first + t.stepX[i] * Half{0, 1, 2, 3};
+    high[i] = first + t.stepX[i] * Half{4, 5, 6, 7};
+  }
+  constexpr int h = std::endian::native == std::endian::little ? 1 : 0;  // a 64-bit lane's high word
   for (int y = y0; y <= y1; ++y) {
-    const Edges covered = inColumns & (e[0] >= 0) & (e[1] >= 0) & (e[2] >= 0);
-    const NarrowLanes lanes = __builtin_convertvector(covered, NarrowLanes);
+    const Words a = std::bit_cast<Words>(low[0] | low[1] | low[2]);
+    const Words b = std::bit_cast<Words>(high[0] | high[1] | high[2]);
+    const NarrowLanes signs = __builtin_shufflevector(a, b, h, 2 + h, 4 + h, 6 + h, 8 + h, 10 + h, 12 + h, 14 + h);
+    const NarrowLanes lanes = (signs >= 0) & inColumns;
     uint64_t words[kNarrowColumns / 2];
     std::memcpy(words, &lanes, sizeof words);
     if ((words[0] | words[1] | words[2] | words[3]) != 0) sink(y, window, lanes);
-    for (int i = 0; i < 3; ++i) e[i] += t.stepY[i];
+    for (int i = 0; i < 3; ++i) {
+      low[i] += t.stepY[i];
+      high[i] += t.stepY[i];
+    }
   }
 }
 

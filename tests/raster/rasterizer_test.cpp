@@ -328,6 +328,45 @@ TEST_CASE("row spans cover exactly the pixels whose three edge functions pass, f
   CHECK(coveredTotal > 100000);  // the triangles really cover something
 }
 
+namespace {
+
+// What rasterizeNarrowRows gave for one triangle, against the oracle: every pixel of the buffer's
+// rows [0, rows) inside the region whose three biased edge values are >= 0, and no other.
+struct NarrowRowsCheck {
+  int wrong = 0, covered = 0;
+  bool windowsInside = true, rowsNonEmpty = true, rowsInOrder = true, shiftedWindow = false;
+};
+
+NarrowRowsCheck checkNarrowRows(const TriangleSetup& t, const Rect& region, int bufferWidth, int rows) {
+  NarrowRowsCheck c;
+  std::vector<uint8_t> lanes(size_t(bufferWidth) * size_t(rows), 0);
+  int lastRow = -1;
+  rasterizeNarrowRows(t, region, bufferWidth, [&](int y, int window, NarrowLanes covered) {
+    c.windowsInside = c.windowsInside && window >= 0 && window + kNarrowColumns <= bufferWidth;
+    c.shiftedWindow = c.shiftedWindow || window < std::max(t.minX, region.x);
+    c.rowsInOrder = c.rowsInOrder && y > lastRow;
+    lastRow = y;
+    bool any = false;
+    for (int k = 0; k < kNarrowColumns; ++k) {
+      if (covered[k] == 0) continue;
+      any = true;
+      REQUIRE(covered[k] == -1);
+      ++lanes[size_t(y * bufferWidth + window + k)];
+    }
+    c.rowsNonEmpty = c.rowsNonEmpty && any;
+  });
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < bufferWidth; ++x) {
+      bool inside = y >= region.y && y < region.y + region.height && x >= region.x && x < region.x + region.width;
+      for (int i = 0; i < 3; ++i) inside = inside && t.edgeAt(i, x, y) + t.bias[i] >= 0;
+      c.wrong += lanes[size_t(y * bufferWidth + x)] != (inside ? 1 : 0);
+      c.covered += inside;
+    }
+  return c;
+}
+
+}  // namespace
+
 TEST_CASE("narrow rows cover exactly the pixels whose three edge functions pass, in a window inside the buffer",
           "[raster][coverage][narrow]") {
   // The same oracle as the spans' test, for the lane masks of rasterizeNarrowRows: triangles at
@@ -362,43 +401,60 @@ TEST_CASE("narrow rows cover exactly the pixels whose three edge functions pass,
     const int regionWidth = cutByRegion ? std::min(1 + int(next() % 8), bufferWidth - regionX) : bufferWidth;
     const Rect region{regionX, 1, regionWidth, 27};
     if (!isNarrow(t, region, bufferWidth)) continue;
-    std::vector<uint8_t> lanes(size_t(bufferWidth) * 40, 0);
-    bool windowsInside = true, rowsNonEmpty = true, rowsInOrder = true;
-    int lastRow = -1;
-    rasterizeNarrowRows(t, region, bufferWidth, [&](int y, int window, NarrowLanes covered) {
-      windowsInside = windowsInside && window >= 0 && window + kNarrowColumns <= bufferWidth;
-      shiftedWindows += window < std::max(t.minX, region.x);
-      rowsInOrder = rowsInOrder && y > lastRow;
-      lastRow = y;
-      bool any = false;
-      for (int k = 0; k < kNarrowColumns; ++k) {
-        if (covered[k] == 0) continue;
-        any = true;
-        REQUIRE(covered[k] == -1);
-        ++lanes[size_t(y * bufferWidth + window + k)];
-      }
-      rowsNonEmpty = rowsNonEmpty && any;
-    });
-    int wrong = 0;
-    for (int y = 0; y < 40; ++y)
-      for (int x = 0; x < bufferWidth; ++x) {
-        bool inside = y >= region.y && y < region.y + region.height && x >= region.x && x < region.x + region.width;
-        for (int i = 0; i < 3; ++i) inside = inside && t.edgeAt(i, x, y) + t.bias[i] >= 0;
-        wrong += lanes[size_t(y * bufferWidth + x)] != (inside ? 1 : 0);
-        coveredTotal += inside;
-      }
+    const NarrowRowsCheck c = checkNarrowRows(t, region, bufferWidth, 40);
     INFO("triangle " << n << ": (" << v[0].x << "," << v[0].y << ") (" << v[1].x << "," << v[1].y << ") (" << v[2].x
                      << "," << v[2].y << "), buffer width " << bufferWidth << ", region x " << region.x << " width "
                      << region.width);
-    REQUIRE(wrong == 0);
-    REQUIRE(windowsInside);
-    REQUIRE(rowsNonEmpty);
-    REQUIRE(rowsInOrder);
+    REQUIRE(c.wrong == 0);
+    REQUIRE(c.windowsInside);
+    REQUIRE(c.rowsNonEmpty);
+    REQUIRE(c.rowsInOrder);
+    coveredTotal += c.covered;
+    shiftedWindows += c.shiftedWindow;
     ++checked;
   }
   CHECK(checked > 2000);
   CHECK(coveredTotal > 20000);
   CHECK(shiftedWindows > 50);  // the buffer's right end moved the window often enough to be tested
+}
+
+TEST_CASE("narrow rows of triangles reaching far beyond the region, whose edge values need 64 bits",
+          "[raster][coverage][narrow]") {
+  // A region a few columns wide cuts triangles whose vertices lie up to 2^18 pixels away (inside
+  // the guard band): their edge values at the region's pixels reach 2^40 and more, so a test that
+  // looked at fewer than 64 bits of them would go wrong here.
+  TestRandom random(0x9E3779B97F4A7C15ull);
+  auto next = [&]() { return random.bits(); };
+  RenderState rs;
+  const DepthCodec codec;
+  int checked = 0, coveredTotal = 0, largeValues = 0;
+  for (int n = 0; n < 1500; ++n) {
+    const int bufferWidth = 8 + int(next() % 40);
+    const Rect region{int(next() % uint64_t(bufferWidth - 7)), 1, 1 + int(next() % 8), 38};
+    const int64_t reach = int64_t(1) << (10 + next() % 9);  // 2^10 … 2^18 pixels
+    WindowVertex v[3];
+    for (WindowVertex& w : v) {
+      w.x = (int64_t(region.x) + int64_t(next() % uint64_t(2 * reach)) - reach) * kSubpixelOne + int64_t(next() % 256);
+      w.y = (int64_t(next() % uint64_t(2 * reach)) - reach + 20) * kSubpixelOne + int64_t(next() % 256);
+      w.fx = double(w.x) / kSubpixelOne;
+      w.fy = double(w.y) / kSubpixelOne;
+    }
+    TriangleSetup t;
+    if (!setupTriangle(v[0], v[1], v[2], FrontFacing, rs, codec, t)) continue;
+    if (!isNarrow(t, region, bufferWidth)) continue;
+    int64_t largest = 0;
+    for (int i = 0; i < 3; ++i) largest = std::max(largest, std::abs(t.edgeAt(i, region.x, region.y) + t.bias[i]));
+    largeValues += largest >= (int64_t(1) << 32);
+    const NarrowRowsCheck c = checkNarrowRows(t, region, bufferWidth, 40);
+    INFO("triangle " << n << ", reach " << reach);
+    REQUIRE(c.wrong == 0);
+    REQUIRE(c.rowsNonEmpty);
+    coveredTotal += c.covered;
+    ++checked;
+  }
+  CHECK(checked > 500);
+  CHECK(largeValues > 300);
+  CHECK(coveredTotal > 5000);  // many of them cover the region's pixels
 }
 
 TEST_CASE("a triangle is narrow when its columns in the region fit in one window of a wide enough buffer",
