@@ -477,7 +477,7 @@ inline v8u depthStep(const uint32_t* stored, bool hasDepth, size_t rowStart, int
 // depths from a table made once per triangle and band (columnDepthParts).
 constexpr int kSlopeRows = 8;
 
-// The column part of a float depth, dzdx * (centre - fx0), for every column a step of the
+// The column part of a depth, dzdx * (centre - fx0), for every column a step of the
 // triangle's rows in the region can start at or cover — the same operations as RowDepth's, so the
 // same bits — indexed by column; nullptr where the triangle has too few rows or columns for the
 // table to pay. A row then adds three numbers a pixel instead of four and a multiplication (the
