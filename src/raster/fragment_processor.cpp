@@ -241,8 +241,9 @@ struct RowDepth {
   // The depths of the four pixels whose centres' x are the lanes of cx, before the codec.
   v4d depths4(v4d cx) const { return (z0 + (dzdx * (cx - fx0) + rowPart)) + offset; }
   // The codes of the four pixels whose centres' x are the lanes of cx.
-  v4u codes4(v4d cx) const {
-    v4d z = depths4(cx);
+  v4u codes4(v4d cx) const { return codesOf(depths4(cx)); }
+  // The codes of four depths: the depth clamp where on, then the codec.
+  v4u codesOf(v4d z) const {
     if (!kPlainFloat && clamp) z = z < lo ? v4d{} + lo : (hi < z ? v4d{} + hi : z);  // std::clamp
     v4u out;
     if constexpr (K == RowKind::UnitFloat) {
@@ -308,6 +309,10 @@ struct RowDepth {
     if constexpr (kPlainFloat) return floatCodes(depths4(c.low), depths4(c.high));  // the clamp on eight floats
     const v4u a = codes4(c.low), b = codes4(c.high);
 #endif
+    return joined(a, b);
+  }
+  // Eight codes from two halves of four.
+  static v8u joined(v4u a, v4u b) {
 #if defined(__AVX__)
     // One insert; the generic shuffle below adds a register move per half.
     return std::bit_cast<v8u>(_mm256_setr_m128i(std::bit_cast<__m128i>(a), std::bit_cast<__m128i>(b)));
@@ -324,14 +329,7 @@ struct RowDepth {
       v4d a, b;
       std::memcpy(&a, slopes, sizeof a);
       std::memcpy(&b, slopes + 4, sizeof b);
-      a = (z0 + (a + rowPart)) + offset;
-      b = (z0 + (b + rowPart)) + offset;
-      if (clamp) {  // std::clamp
-        a = a < lo ? v4d{} + lo : (hi < a ? v4d{} + hi : a);
-        b = b < lo ? v4d{} + lo : (hi < b ? v4d{} + hi : b);
-      }
-      const v4u low = encodeLanes(codec, a), high = encodeLanes(codec, b);
-      return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+      return joined(codesOf((z0 + (a + rowPart)) + offset), codesOf((z0 + (b + rowPart)) + offset));
     } else {
 #if defined(__AVX512F__)
       ClampLanes8 d;
