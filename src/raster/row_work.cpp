@@ -6,10 +6,12 @@ void RowWork::addClear(const Rect& region) {
   if (region.width <= 0 || region.height <= 0) return;
   diff_[size_t(region.y)] += region.width / 4 + kRowCost;
   diff_[size_t(region.y + region.height)] -= region.width / 4 + kRowCost;
+  touched(size_t(region.y), size_t(region.y + region.height));
 }
 
 void RowWork::add(const RowWork& other) {
-  for (size_t r = 0; r < diff_.size(); ++r) diff_[r] += other.diff_[r];
+  for (size_t r = other.lowest_; r <= other.highest_ && r < diff_.size(); ++r) diff_[r] += other.diff_[r];
+  touched(other.lowest_, other.highest_);
 }
 
 int RowWork::split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow) {

@@ -14,7 +14,11 @@ namespace shadowref {
 class RowWork {
  public:
   // Forgets every triangle and clear, for a framebuffer of `rows` rows.
-  void reset(int rows) { diff_.assign(size_t(rows) + 1, 0); }
+  void reset(int rows) {
+    diff_.assign(size_t(rows) + 1, 0);
+    lowest_ = diff_.size();
+    highest_ = 0;
+  }
 
   // A triangle whose bounding box is [minX, maxX] x [minY, maxY], drawn inside `region`: its
   // width on each of its rows and a row's fixed cost, once its fixed cost. A difference list (each
@@ -27,10 +31,12 @@ class RowWork {
     diff_[size_t(bottom)] += width + kRowCost + kTriangleCost;
     diff_[size_t(bottom) + 1] -= kTriangleCost;
     diff_[size_t(top) + 1] -= width + kRowCost;
+    touched(size_t(bottom), size_t(top) + 1);
   }
   // A cleared rectangle: a cleared row costs about a quarter of a drawn one.
   void addClear(const Rect& region);
-  // Another count over the same rows.
+  // Another count over the same rows (only the entries it wrote: with many threads a flush adds
+  // many groups' lists, each over a few of the rows).
   void add(const RowWork& other);
 
   // Cuts rows [minY, maxY] into at most maxBands bands, each at least minRows rows (unless all of
@@ -46,6 +52,11 @@ class RowWork {
   static constexpr int64_t kRowCost = 8, kTriangleCost = 64;
   std::vector<int64_t> diff_;  // per row, what its work adds to the row above's
   std::vector<int64_t> work_;  // split's: the work of each of its rows
+  size_t lowest_ = 0, highest_ = 0;  // the entries of diff_ written since reset: [lowest_, highest_]
+  void touched(size_t first, size_t last) {
+    lowest_ = std::min(lowest_, first);
+    highest_ = std::max(highest_, last);
+  }
 };
 
 }  // namespace shadowref
