@@ -11,8 +11,11 @@
 
 #include <algorithm>
 #include <bit>
+#include <climits>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "raster/render_state.h"
 #include "raster/triangle_setup.h"
@@ -61,6 +64,40 @@ void rasterizeTriangle(const TriangleSetup& t, const Rect& region, Sink&& sink) 
       }
     }
   }
+}
+
+// Columns [first, last] of the region that hold every pixel the triangle covers in rows [y0, y1]
+// (inside its bounding box and the region; first > last when it covers none there): the x extent
+// of the triangle cut to the rows' sample lines — its vertices between them and its edges' crossings
+// of them — one pixel wider each side for the rounding of the crossings (worked in doubles). A
+// triangle reaching across the screen but cut into bands of rows covers far fewer columns in each.
+struct ColumnRange {
+  int first = 0, last = -1;
+};
+inline ColumnRange columnsInRows(const TriangleSetup& t, const Rect& region, int y0, int y1) {
+  const int64_t low = int64_t(y0) * kSubpixelOne + kSubpixelHalf, high = int64_t(y1) * kSubpixelOne + kSubpixelHalf;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  auto take = [&](double x) {
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  };
+  for (int i = 0; i < 3; ++i) {
+    const WindowVertex& a = t.v[i];
+    const WindowVertex& b = t.v[(i + 1) % 3];
+    if (a.y >= low && a.y <= high) take(double(a.x));
+    if (a.y == b.y) continue;
+    for (const int64_t line : {low, high})
+      if (line >= std::min(a.y, b.y) && line <= std::max(a.y, b.y))  // the edge meets the sample line
+        take(double(a.x) + double(b.x - a.x) * (double(line - a.y) / double(b.y - a.y)));
+  }
+  ColumnRange c;
+  if (!(lo <= hi)) return c;
+  const double one = double(kSubpixelOne), half = double(kSubpixelHalf);
+  // A centre px + 1/2 inside [lo, hi]: px from ceil(lo - 1/2) to floor(hi - 1/2).
+  c.first = std::max({t.minX, region.x, int(std::max(std::ceil((lo - half) / one) - 1.0, double(INT32_MIN / 2)))});
+  c.last = std::min({t.maxX, region.x + region.width - 1,
+                     int(std::min(std::floor((hi - half) / one) + 1.0, double(INT32_MAX / 2)))});
+  return c;
 }
 
 // Floor division for a positive divisor.

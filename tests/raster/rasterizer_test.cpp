@@ -470,3 +470,90 @@ TEST_CASE("a triangle is narrow when its columns in the region fit in one window
   CHECK_FALSE(isNarrow(t, Rect{0, 0, 64, 64}, 64));
   CHECK(isNarrow(t, Rect{12, 0, 4, 64}, 64));  // the region leaves four of them
 }
+
+namespace {
+WindowVertex vertexAt(double x, double y) {
+  WindowVertex w;
+  w.x = std::llround(x * kSubpixelOne);
+  w.y = std::llround(y * kSubpixelOne);
+  w.fx = x;
+  w.fy = y;
+  return w;
+}
+}  // namespace
+
+TEST_CASE("the columns a triangle may cover in a band of rows hold every pixel it covers there",
+          "[raster][coverage][columns]") {
+  // The oracle is the edge functions at every pixel centre of the band's rows. Triangles of every
+  // kind: small ones, slivers, vertices on pixel centres, and vertices far out in the guard band
+  // (a shadow volume's far end) whose edges cross the band's rows at a slant.
+  TestRandom random(0x2545F4914F6CDD1Dull);
+  auto next = [&]() { return random.bits(); };
+  RenderState rs;
+  const DepthCodec codec;
+  const Rect region{0, 0, 96, 80};
+  int checked = 0, coveredTotal = 0, narrowed = 0;
+  for (int n = 0; n < 3000; ++n) {
+    WindowVertex v[3];
+    for (WindowVertex& w : v) {
+      const int64_t reach = n % 4 == 0 ? int64_t(1) << (8 + next() % 12) : 100;  // up to 2^19 pixels
+      w.x = int64_t(next() % uint64_t(2 * reach * kSubpixelOne)) - (reach - 48) * kSubpixelOne;
+      w.y = int64_t(next() % uint64_t(2 * reach * kSubpixelOne)) - (reach - 40) * kSubpixelOne;
+      if (n % 5 == 0) w.y = (w.y / kSubpixelOne) * kSubpixelOne + kSubpixelHalf;  // on a row's centres
+      w.fx = double(w.x) / kSubpixelOne;
+      w.fy = double(w.y) / kSubpixelOne;
+    }
+    if (n % 7 == 0) v[2].x = v[1].x + (v[1].x - v[0].x) / 97;  // slivers
+    TriangleSetup t;
+    if (!setupTriangle(v[0], v[1], v[2], FrontFacing, rs, codec, t)) continue;
+    const int y0 = int(next() % 80), y1 = std::min(79, y0 + int(next() % 24));
+    const ColumnRange c = columnsInRows(t, region, y0, y1);
+    int lo = region.width, hi = -1;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = 0; x < region.width; ++x) {
+        bool inside = true;
+        for (int i = 0; i < 3; ++i) inside = inside && t.edgeAt(i, x, y) + t.bias[i] >= 0;
+        if (!inside) continue;
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+        ++coveredTotal;
+      }
+    INFO("triangle " << n << ": (" << v[0].x << "," << v[0].y << ") (" << v[1].x << "," << v[1].y << ") (" << v[2].x
+                     << "," << v[2].y << "), rows " << y0 << ".." << y1);
+    if (hi >= 0) {
+      REQUIRE(c.first <= lo);
+      REQUIRE(c.last >= hi);
+    }
+    if (c.first <= c.last) {  // inside the bounding box and the region
+      CHECK(c.first >= std::max(t.minX, region.x));
+      CHECK(c.last <= std::min(t.maxX, region.x + region.width - 1));
+    }
+    narrowed += c.last - c.first < std::min(t.maxX, 95) - std::max(t.minX, 0) - 8;
+    ++checked;
+  }
+  CHECK(checked > 2500);
+  CHECK(coveredTotal > 100000);
+  CHECK(narrowed > 300);  // the band's rows cut many triangles to far fewer columns than their box
+}
+
+TEST_CASE("a diagonal sliver's columns in the bottom rows are the few its edges cross there", "[raster][coverage][columns]") {
+  // Edges from (0, 0) to (800, 640) and (810, 640): x = 1.25 y and x = 1.265625 y. At the sample
+  // line of row 15 (y = 15.5) they are at x = 19.375 and 19.617, so the last column whose centre
+  // (px + 1/2) can be inside is 19; the range adds a pixel for rounding: 20. The bottom sample
+  // line (y = 0.5) meets them at x = 0.625: first column 1, with the pixel 0.
+  RenderState rs;
+  const DepthCodec codec;
+  TriangleSetup t;
+  REQUIRE(setupTriangle(vertexAt(0, 0), vertexAt(800, 640), vertexAt(810, 640), FrontFacing, rs, codec, t));
+  const ColumnRange bottom = columnsInRows(t, Rect{0, 0, 1024, 1024}, 0, 15);
+  CHECK(bottom.first == 0);
+  CHECK(bottom.last == 20);
+  // Rows 320..335 (sample lines y = 320.5 and 335.5): x from 400.625 to 424.617, centres in
+  // columns 401..424, with the pixel each side 400..425.
+  const ColumnRange middle = columnsInRows(t, Rect{0, 0, 1024, 1024}, 320, 335);
+  CHECK(middle.first == 400);
+  CHECK(middle.last == 425);
+  // Rows the triangle does not reach: nothing.
+  const ColumnRange above = columnsInRows(t, Rect{0, 0, 1024, 1024}, 700, 710);
+  CHECK(above.first > above.last);
+}
