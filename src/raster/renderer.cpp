@@ -38,12 +38,13 @@ void canonicalRotation(const ClipVertex*& a, const ClipVertex*& b, const ClipVer
 
 namespace {
 std::atomic<bool> referencePathForNewRenderers{false};
+std::atomic<uint64_t> renderersMade{0};
 }  // namespace
 
 void Renderer::useReferencePath(bool on) { referencePathForNewRenderers = on; }
 
 Renderer::Renderer(Framebuffer& framebuffer, int threads)
-    : fb_(framebuffer), referencePath_(referencePathForNewRenderers) {
+    : fb_(framebuffer), serial_(++renderersMade), referencePath_(referencePathForNewRenderers) {
   setThreads(threads);
   rowWork_.reset(fb_.height());
 }
@@ -253,6 +254,17 @@ void Renderer::draw(const DrawCall& call) {
 
   const size_t triangleCount = trianglesOf(call);
   stats_.trianglesIn += triangleCount;
+  if (call.reuse && canReuse(call)) {  // its indices were checked when its setups were kept
+    call.reuse->flush_ = flushes_;
+    if (pool_ && deferDepth_ == 1 && keptDepth_ == 1) {
+      queueAssembly(call, planes, varyingCount);
+      queued_.back().kept = call.reuse;
+      return;
+    }
+    drawKeptSetups(call);
+    if (deferDepth_ == 0) flush();
+    return;
+  }
   checkIndices(call);
   if (pool_ && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1) {
     queueAssembly(call, planes, varyingCount);
@@ -277,9 +289,17 @@ void Renderer::draw(const DrawCall& call) {
   pending.state = state;
   pending.shader = call.shader;
   pending.watch = watch_;
-  if (collectSetups(std::span(assembly_.data(), chunks), pending)) pending_.push_back(pending);
+  uint64_t culled = 0, clipped = 0;
+  for (size_t c = 0; c < chunks; ++c) {
+    culled += assembly_[c].stats.trianglesCulled;
+    clipped += assembly_[c].stats.trianglesClipped;
+  }
+  const bool drawn = collectSetups(std::span(assembly_.data(), chunks), pending);
+  if (call.reuse && clipped == 0) keepForReuse(call, pending.first, pendingSetups_.size() - pending.first, culled);
+  if (drawn) pending_.push_back(pending);
   if (deferDepth_ == 0) flush();
 }
+
 
 // Moves the setups the workspaces assembled into the pending lists, counts them, and fills in
 // the rows `pending` touches; false when it has nothing to rasterize (no setups, or none meets its
@@ -299,7 +319,7 @@ bool Renderer::collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDra
 // pending list points into it; its counters are added up. The vertices clipping made stay in the
 // workspace until the flush.
 void Renderer::keepBlock(AssemblyWorkspace& ws) {
-  pendingBlocks_.push_back(std::move(ws.setups));
+  pendingBlocks_.push_back(std::make_shared<const SetupBlock>(std::move(ws.setups)));
   ws.setups = {};
   stats_.trianglesClipped += ws.stats.trianglesClipped;
   stats_.trianglesCulled += ws.stats.trianglesCulled;
@@ -337,6 +357,62 @@ bool Renderer::settleRows(PendingDraw& pending, size_t count, int minY, int maxY
   return pending.minY <= pending.maxY;
 }
 
+bool setsUpAlike(const RenderState& a, const RenderState& b) {
+  const Viewport& u = a.viewport;
+  const Viewport& v = b.viewport;
+  return u.x == v.x && u.y == v.y && u.width == v.width && u.height == v.height && u.nearVal == v.nearVal &&
+         u.farVal == v.farVal && a.frontFace == b.frontFace && a.cull == b.cull &&
+         a.polygonOffset.enabled == b.polygonOffset.enabled && a.polygonOffset.factor == b.polygonOffset.factor &&
+         a.polygonOffset.units == b.polygonOffset.units && a.depthClamp == b.depthClamp && a.clipFar == b.clipFar;
+}
+
+bool Renderer::canReuse(const DrawCall& call) const {
+  const SetupReuse& r = *call.reuse;
+  return r.kept_ && r.renderer_ == serial_ && r.flush_ != flushes_ && r.vertices_ == call.vertices.data() &&
+         r.vertexCount_ == call.vertices.size() && r.indices_ == call.indices.data() &&
+         r.indexCount_ == call.indices.size() && setsUpAlike(r.state_, *call.state);
+}
+
+// The kept setups as a pending draw of this call's state: no assembly, and their rows' work is
+// counted at the flush.
+void Renderer::drawKeptSetups(const DrawCall& call) {
+  const SetupReuse& r = *call.reuse;
+  PendingDraw pending;
+  pending.region = drawRegion(*call.state, fb_);
+  pending.state = *call.state;
+  pending.shader = call.shader;
+  pending.watch = watch_;
+  pending.first = pendingSetups_.size();
+  pendingSetups_.insert(pendingSetups_.end(), r.setups_.begin(), r.setups_.end());
+  pendingBounds_.insert(pendingBounds_.end(), r.bounds_.begin(), r.bounds_.end());
+  pendingBlocks_.insert(pendingBlocks_.end(), r.blocks_.begin(), r.blocks_.end());  // alive until the flush
+  stats_.trianglesCulled += r.culled_;
+  stats_.trianglesRasterized += r.setups_.size();
+  if (settleRows(pending, r.setups_.size(), r.minY_, r.maxY_)) pending_.push_back(pending);
+}
+
+// Keeps the call's setups — pendingSetups_[first, first + count), in blocks already in
+// pendingBlocks_ — in call.reuse.
+void Renderer::keepForReuse(const DrawCall& call, size_t first, size_t count, uint64_t culled) {
+  SetupReuse& r = *call.reuse;
+  r.kept_ = true;
+  r.renderer_ = serial_;
+  r.flush_ = flushes_;
+  r.vertices_ = call.vertices.data();
+  r.vertexCount_ = call.vertices.size();
+  r.indices_ = call.indices.data();
+  r.indexCount_ = call.indices.size();
+  r.state_ = *call.state;
+  const auto at = std::ptrdiff_t(first), end = std::ptrdiff_t(first + count);
+  r.setups_.assign(pendingSetups_.begin() + at, pendingSetups_.begin() + end);
+  r.bounds_.assign(pendingBounds_.begin() + at, pendingBounds_.begin() + end);
+  r.blocks_.assign(pendingBlocks_.begin(), pendingBlocks_.end());
+  r.culled_ = culled;
+  const SpannedRows rows = rowsSpanned(std::span<const SetupBounds>(r.bounds_));
+  r.minY_ = rows.minY;
+  r.maxY_ = rows.maxY;
+}
+
 // A draw under a DeferredDraws that keeps the geometry: its assembly waits for the flush, where
 // every queued draw is assembled at once on all threads (assembleQueued), and its pending draw
 // keeps its place in pending_ meanwhile.
@@ -351,6 +427,7 @@ void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int
   pending.state = *call.state;
   pending.shader = call.shader;
   pending.watch = watch_;
+  pending.reuse = call.reuse;
 }
 
 void Renderer::assembleQueued() {
@@ -359,9 +436,11 @@ void Renderer::assembleQueued() {
   // block per group (the city's volume pass queues ~800 draws, the pumpkins' passes a dozen large
   // ones). The threads take the groups in order, so the runs shrink — shares groups + 1, groups,
   // … 2 of the triangles — and the last ones, small, even out the threads' ends; a draw may be cut
-  // between groups (groups of whole draws waited for the lantern's 6012 triangles).
+  // between groups (groups of whole draws waited for the lantern's 6012 triangles). A draw that
+  // takes kept setups (SetupReuse) is not assembled: its setups are copied in the second run.
+  auto assembled = [](const QueuedAssembly& q) { return q.kept ? size_t(0) : trianglesOf(q.call); };
   size_t total = 0;
-  for (const QueuedAssembly& q : queued_) total += trianglesOf(q.call);
+  for (const QueuedAssembly& q : queued_) total += assembled(q);
   const size_t groups = std::min(total, size_t(pool_->threadCount()) * kQueuedGroupsPerThread);
   const size_t parts = groups * (groups + 3) / 2;
   auto groupStart = [&](size_t g) {  // the parts of groups 0 … g - 1: g (groups + 1) - g (g - 1) / 2
@@ -373,8 +452,8 @@ void Renderer::assembleQueued() {
   for (size_t g = 0; g < groups; ++g) {
     const size_t end = groupStart(g + 1);
     for (size_t at = groupStart(g); at < end;) {
-      while (at >= drawStart + trianglesOf(queued_[draw].call)) drawStart += trianglesOf(queued_[draw++].call);
-      const size_t stop = std::min(end, drawStart + trianglesOf(queued_[draw].call));
+      while (at >= drawStart + assembled(queued_[draw])) drawStart += assembled(queued_[draw++]);
+      const size_t stop = std::min(end, drawStart + assembled(queued_[draw]));
       queuedPieces_.push_back({.draw = draw, .first = at - drawStart, .last = stop - drawStart});
       at = stop;
     }
@@ -396,27 +475,50 @@ void Renderer::assembleQueued() {
         prepareCorners(q.call, q.planes, ws.ownCorners, nullptr, piece.first, piece.last);
         ws.corners = &ws.ownCorners;
       }
+      const RasterStats before = ws.stats;
       appendTriangles(q.call, piece.first, piece.last, q.planes, q.varyingCount, ws);
       piece.setupsEnd = ws.setups.size();
+      piece.culled = ws.stats.trianglesCulled - before.trianglesCulled;
+      piece.clipped = ws.stats.trianglesClipped - before.trianglesClipped;
     }
     ws.corners = nullptr;
   });
-  // Each group's setups take the next slice of the pending lists, filled on the threads with the
-  // rows each piece spans (27k pumpkin triangles a pass: a serial copy kept the other thread
-  // waiting).
+  // Each group's setups take the next slice of the pending lists, then each kept draw's, filled
+  // on the threads with the rows each piece spans (27k pumpkin triangles a pass: a serial copy
+  // kept the other thread waiting).
   std::vector<size_t>& groupFirst = queuedGroupFirst_;
   groupFirst.assign(groups + 1, pendingSetups_.size());
   for (size_t g = 0; g < groups; ++g) groupFirst[g + 1] = groupFirst[g] + queuedWs_[g].setups.size();
-  pendingSetups_.resize(groupFirst[groups]);
-  pendingBounds_.resize(groupFirst[groups]);
-  if (queuedRowWork_.size() < groups) queuedRowWork_.resize(groups);
-  pool_->run(int(groups), [&](int gi) {
-    const size_t g = size_t(gi);
+  queuedKept_.clear();
+  size_t end = groupFirst[groups];
+  for (size_t d = 0; d < queued_.size(); ++d) {
+    if (!queued_[d].kept) continue;
+    PendingDraw& pending = pending_[queued_[d].pending];
+    pending.first = end;
+    pending.count = queued_[d].kept->setups_.size();
+    end += pending.count;
+    queuedKept_.push_back(d);
+  }
+  pendingSetups_.resize(end);
+  pendingBounds_.resize(end);
+  const size_t tasks = groups + queuedKept_.size();
+  if (queuedRowWork_.size() < tasks) queuedRowWork_.resize(tasks);
+  pool_->run(int(tasks), [&](int task) {
+    RowWork& work = queuedRowWork_[size_t(task)].work;
+    work.reset(fb_.height());
+    if (size_t(task) >= groups) {
+      const QueuedAssembly& q = queued_[queuedKept_[size_t(task) - groups]];
+      const SetupReuse& kept = *q.kept;
+      const PendingDraw& pending = pending_[q.pending];
+      std::copy(kept.setups_.begin(), kept.setups_.end(), pendingSetups_.begin() + std::ptrdiff_t(pending.first));
+      std::copy(kept.bounds_.begin(), kept.bounds_.end(), pendingBounds_.begin() + std::ptrdiff_t(pending.first));
+      for (const SetupBounds& t : kept.bounds_) work.addTriangle(t.minX, t.minY, t.maxX, t.maxY, pending.region);
+      return;
+    }
+    const size_t g = size_t(task);
     const AssemblyWorkspace& ws = queuedWs_[g];
     for (size_t k = 0; k < ws.setups.size(); ++k) pendingSetups_[groupFirst[g] + k] = &ws.setups[k];
     std::copy(ws.bounds.begin(), ws.bounds.end(), pendingBounds_.begin() + std::ptrdiff_t(groupFirst[g]));
-    RowWork& work = queuedRowWork_[g].work;
-    work.reset(fb_.height());
     size_t next = 0;
     for (QueuedPiece& piece : piecesOf(g)) {
       const std::span<const SetupBounds> bounds = std::span(ws.bounds).subspan(next, piece.setupsEnd - next);
@@ -428,8 +530,8 @@ void Renderer::assembleQueued() {
       next = piece.setupsEnd;
     }
   });
-  queuedRowWorkCount_ = groups;
-  // Each draw's setups: its pieces', consecutive in the pending lists.
+  queuedRowWorkCount_ = tasks;
+  // Each assembled draw's setups: its pieces', consecutive in the pending lists.
   for (size_t g = 0, last = queued_.size(); g < groups; ++g) {
     size_t next = 0;
     for (const QueuedPiece& piece : piecesOf(g)) {
@@ -447,6 +549,17 @@ void Renderer::assembleQueued() {
       next = piece.setupsEnd;
     }
   }
+  for (const size_t d : queuedKept_) {
+    const SetupReuse& kept = *queued_[d].kept;
+    PendingDraw& pending = pending_[queued_[d].pending];
+    pending.minY = kept.minY_;
+    pending.maxY = kept.maxY_;
+    stats_.trianglesCulled += kept.culled_;
+    pendingBlocks_.insert(pendingBlocks_.end(), kept.blocks_.begin(), kept.blocks_.end());  // alive until the flush
+  }
+  stats_.trianglesRasterized += end - groupFirst[0];
+  for (size_t g = 0; g < groups; ++g) keepBlock(queuedWs_[g]);
+  keepQueuedForReuse();
   for (const QueuedAssembly& q : queued_) {
     PendingDraw& pending = pending_[q.pending];
     pending.workCounted = true;
@@ -456,9 +569,29 @@ void Renderer::assembleQueued() {
       pending.maxY = -1;
     }
   }
-  stats_.trianglesRasterized += groupFirst[groups] - groupFirst[0];
-  for (size_t g = 0; g < groups; ++g) keepBlock(queuedWs_[g]);
   queued_.clear();
+}
+
+// The assembled queued draws' setups kept in their SetupReuse (those that clipped no triangle),
+// each draw's copied on a thread of its own.
+void Renderer::keepQueuedForReuse() {
+  queuedKeep_.clear();
+  for (size_t d = 0; d < queued_.size(); ++d)
+    if (queued_[d].call.reuse && !queued_[d].kept) queuedKeep_.push_back({d, 0, 0});
+  if (queuedKeep_.empty()) return;
+  for (const QueuedPiece& piece : queuedPieces_) {
+    auto at = std::lower_bound(queuedKeep_.begin(), queuedKeep_.end(), piece.draw,
+                               [](const KeptDraw& k, size_t draw) { return k.draw < draw; });
+    if (at == queuedKeep_.end() || at->draw != piece.draw) continue;
+    at->culled += piece.culled;
+    at->clipped += piece.clipped;
+  }
+  pool_->run(int(queuedKeep_.size()), [&](int i) {
+    const KeptDraw& k = queuedKeep_[size_t(i)];
+    const QueuedAssembly& q = queued_[k.draw];
+    const PendingDraw& pending = pending_[q.pending];
+    if (k.clipped == 0) keepForReuse(q.call, pending.first, pending.count, k.culled);
+  });
 }
 
 namespace {
@@ -614,6 +747,7 @@ void Renderer::flush() {
 }
 
 void Renderer::clearPending() {
+  ++flushes_;
   pending_.clear();
   pendingClears_.clear();
   pendingSetups_.clear();

@@ -23,6 +23,15 @@
 
 namespace shadowref {
 
+class SetupReuse;
+
+// The pixels a setup may cover (its minX … maxY), in a compact list beside the setups: the
+// flush's loops (a draw's rows, the bands' work estimate) and each band's choice of its setups
+// read 16 bytes a triangle instead of a line of a few-hundred-byte setup another thread wrote.
+struct SetupBounds {
+  int minX, minY, maxX, maxY;
+};
+
 struct DrawCall {
   const RenderState* state = nullptr;
   std::span<const ClipVertex> vertices;
@@ -31,7 +40,44 @@ struct DrawCall {
   // nullptr draws no colour at all (stencil/depth-only passes).
   const FragmentShader* shader = nullptr;
   uint32_t tag = 0;  // reported in the pixel history
+  // Set-up triangles kept for a later draw of the same vertices and indices (SetupReuse).
+  SetupReuse* reuse = nullptr;
 };
+
+// A draw's set-up triangles, kept for a later draw of the same triangles in another pass: a
+// scene's instances are drawn once for the ambient pass and once for each light, with the same
+// vertices, indices and everything that sets a triangle up — only the depth, stencil and blend
+// tests and the shader change. The first draw given one of these assembles as usual and keeps its
+// setups in it; a later draw given it takes them instead of assembling again when it draws the same
+// vertex and index arrays (the same objects: the caller keeps them unchanged meanwhile) in a
+// state that sets triangles up alike (setsUpAlike), on the same renderer. The same setups, so
+// the same bytes. A draw that clipped a triangle is not kept: the vertices clipping makes last
+// only until its flush. The caller owns it; it holds the setups (and the blocks they are in)
+// until it is destroyed or kept anew. One draw per flush takes it.
+class SetupReuse {
+ public:
+  bool holdsSetups() const { return kept_; }
+
+ private:
+  friend class Renderer;
+  bool kept_ = false;
+  uint64_t renderer_ = 0;  // the Renderer's serial number
+  uint64_t flush_ = 0;  // the renderer's flush that last kept or took it
+  const ClipVertex* vertices_ = nullptr;
+  size_t vertexCount_ = 0;
+  const uint32_t* indices_ = nullptr;
+  size_t indexCount_ = 0;
+  RenderState state_;
+  std::vector<const TriangleSetup*> setups_;
+  std::vector<SetupBounds> bounds_;
+  uint64_t culled_ = 0;
+  int minY_ = 0, maxY_ = -1;
+  std::vector<std::shared_ptr<const SetupBlock>> blocks_;  // where setups_ point
+};
+
+// Whether two states set a draw's triangles up alike: the same clipping, window transform,
+// facing, culling and depth offset (the tests, masks, blending and scissor do not enter a setup).
+bool setsUpAlike(const RenderState& a, const RenderState& b);
 
 class Renderer {
  public:
@@ -92,12 +138,6 @@ class Renderer {
     std::vector<uint8_t> inside;
     const ClipVertex* base = nullptr;  // the draw's vertices; empty: work per corner
   };
-  // The pixels a setup may cover (its minX … maxY), in a compact list beside the setups: the
-  // flush's loops (a draw's rows, the bands' work estimate) and each band's choice of its setups
-  // read 16 bytes a triangle instead of a line of a few-hundred-byte setup another thread wrote.
-  struct SetupBounds {
-    int minX, minY, maxX, maxY;
-  };
   // What one thread of triangle assembly works in: its share of the triangles' setups and their
   // bounds, the vertices clipping made (kept until the flush has rasterized them), scratch,
   // counters, and the corners of the draw it assembles (nullptr: work per corner).
@@ -136,6 +176,7 @@ class Renderer {
     size_t first = 0, count = 0;  // its setups in pendingSetups_
     int minY = 0, maxY = -1;      // the rows its triangles may touch
     bool workCounted = false;     // its setups are in rowWork_ (assembleQueued counted them)
+    SetupReuse* reuse = nullptr;  // the call's, to keep its setups in once they are assembled
   };
   friend class DeferredDraws;
   bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
@@ -151,6 +192,7 @@ class Renderer {
     ClipPlanes planes;
     int varyingCount = 0;
     size_t pending = 0;
+    const SetupReuse* kept = nullptr;  // the setups it takes instead of assembling (SetupReuse)
   };
   // Triangles [first, last) of queued draw `draw`, assembled by one group: a group is a run of
   // the pass's triangles, so a large draw (the pumpkins' lantern: 6012) is cut between groups.
@@ -159,7 +201,14 @@ class Renderer {
     size_t first = 0, last = 0;
     size_t setupsEnd = 0;     // after assembly: the end of its setups in its group's workspace
     int minY = 0, maxY = -1;  // after assembly: the rows its setups span
+    uint64_t culled = 0, clipped = 0;  // after assembly: its triangles culled and clipped
   };
+  // SetupReuse: whether the call may take the setups kept in call.reuse; takes them (a pending
+  // draw without assembly); keeps a pending draw's setups in it.
+  bool canReuse(const DrawCall& call) const;
+  void drawKeptSetups(const DrawCall& call);
+  void keepForReuse(const DrawCall& call, size_t first, size_t count, uint64_t culled);
+  void keepQueuedForReuse();
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();
   void rasterizeBand(int y0, int y1, RasterStats& stats) const;
@@ -178,6 +227,8 @@ class Renderer {
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
 
   Framebuffer& fb_;
+  const uint64_t serial_;  // this renderer among all made in the process (SetupReuse)
+  uint64_t flushes_ = 0;   // flushes done (SetupReuse: one draw per flush takes one)
   ThreadPool* pool_ = nullptr;  // the calling thread's (threadPoolForThisThread); nullptr: one thread
   // A band's counters, on cache lines of their own: the band's thread adds to them per triangle
   // (per chunk of fragments in a shaded pass), and a line shared with the next band's counters
@@ -200,7 +251,7 @@ class Renderer {
   // spares the calling thread zeroing them first.
   std::vector<const TriangleSetup*, ConstructLaterAllocator<const TriangleSetup*>> pendingSetups_;
   std::vector<SetupBounds, ConstructLaterAllocator<SetupBounds>> pendingBounds_;  // of each pending setup
-  std::vector<SetupBlock> pendingBlocks_;  // the setups, as assembly made them
+  std::vector<std::shared_ptr<const SetupBlock>> pendingBlocks_;  // the setups, as assembly made them (and SetupReuse keeps)
   std::vector<PendingClear> pendingClears_;
   int splitIntoBands(int minY, int maxY, int maxBands);
   RowWork rowWork_;  // the pending draws' and clears' (those counted so far), which the bands share
@@ -212,6 +263,13 @@ class Renderer {
   std::vector<QueuedPiece> queuedPieces_;
   std::vector<size_t> queuedGroups_;  // assembleQueued's group g: pieces [queuedGroups_[g], queuedGroups_[g + 1])
   std::vector<AssemblyWorkspace> queuedWs_;
+  std::vector<size_t> queuedKept_;  // the queued draws that take kept setups
+  // A queued draw whose setups are to be kept in its SetupReuse, with its pieces' counts.
+  struct KeptDraw {
+    size_t draw = 0;
+    uint64_t culled = 0, clipped = 0;
+  };
+  std::vector<KeptDraw> queuedKeep_;
   // Each queued group's setups counted into the rows' work on the group's thread (27k pumpkin
   // triangles a pass were counted on the calling thread), added to rowWork_ when the flush splits.
   struct alignas(128) GroupRowWork {

@@ -166,9 +166,11 @@ void drawInstance(Renderer& renderer, const RenderState& state, const LitInstanc
     keep.shaders.push_back(std::make_unique<ConstantColorShader>(
         glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0)));
     call.vertices = p.vertices;
+    call.reuse = &p.setups;
   } else if (!item.litVertices) {
     keep.shaders.push_back(std::make_unique<PerPixelLightingShader>(lighting));
     call.vertices = p.vertices;
+    call.reuse = &p.setups;
   } else {
     // Gouraud: each vertex lit (drawLit, on the threads), the colour interpolated.
     keep.shaders.push_back(std::make_unique<GouraudShader>());

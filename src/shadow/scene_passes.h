@@ -25,6 +25,9 @@ struct PreparedInstance {
   VertexTransform transform;     // object -> clip; shadow volumes of this instance must use it too
   ClipVertexBuffer vertices;
   std::span<const uint32_t> indices;  // the mesh's own (triangleIndices)
+  // The setups of its scene draws (ambient, then each light's lit pass: the same triangles in a
+  // state that sets them up alike), kept for the frame's next pass.
+  mutable SetupReuse setups;
 };
 
 // The state to draw an instance with: `state` itself, or for a mirrored instance (det(world) < 0,

@@ -1,6 +1,7 @@
 // The draw call as a whole: scissor, the canonical vertex rotation that makes equal triangles give
 // bit-equal depths (the shadow-volume front cap, SPEC.md §3 step 2), determinism, pixel history.
 #include <cstring>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -410,7 +411,7 @@ struct QueuedScene {
   std::vector<uint32_t> gridIndices;
 };
 
-QueuedScene makeQueuedScene(uint64_t seed) {
+QueuedScene makeQueuedScene(uint64_t seed, double nearZ = 0.2) {
   TestRandom rng(seed);
   QueuedScene q;
   const glm::dmat4 p = perspective(70.0, 1.25, 0.5, 50.0);
@@ -418,7 +419,7 @@ QueuedScene makeQueuedScene(uint64_t seed) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       ClipVertex v;
-      const double x = -6.0 + 12.0 * i / n, z = 0.2 - 14.0 * j / n;
+      const double x = -6.0 + 12.0 * i / n, z = nearZ - 14.0 * j / n;
       v.position = p * glm::dvec4(x, -2.0 + rng.uniform(-0.6, 0.6), z, 1.0);
       for (int k = 0; k < 4; ++k) v.varyings[size_t(k)] = rng.uniform(0.0, 1.0);
       q.gridVertices.push_back(v);
@@ -499,4 +500,209 @@ TEST_CASE("queued draws cut into groups of triangles give the bytes and counts o
     const Framebuffer reversed = renderQueued(q, 2, true, true, reversedStats);
     CHECK_FALSE(sameBytes(reference.color(), reversed.color()));
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Kept setups (SetupReuse): a later pass of the same triangles takes the first pass's setups.
+
+namespace {
+
+// Two passes over the queued scene's grid (moved in front of the near plane: nothing clipped) and
+// soups: an ambient-like pass that writes depth and colour, then a lit-like pass (EQUAL, additive
+// blending, stencil counting) with other shaders — each draw with a SetupReuse of its own when
+// `reuse`. Returns the framebuffer; `kept` says whether the first pass kept the grid's setups.
+Framebuffer renderTwoPasses(const QueuedScene& q, int threads, bool queued, bool reuse, RasterStats& stats,
+                            bool& kept) {  Framebuffer fb(160, 128);
+  RenderState first = fullViewportState(fb);
+  clearColor(fb, first, {0.1f, 0.2f, 0.3f, 0.4f});
+  clearDepth(fb, first, 1.0);
+  clearStencil(fb, first, 0);
+  first.cull = CullMode::Back;
+  first.depthFunc = CompareFunc::Less;
+  RenderState second = first;
+  second.depthFunc = CompareFunc::Equal;
+  second.depthWrite = false;
+  second.blend = {true, BlendFactor::One, BlendFactor::One};
+  second.stencilTest = true;
+  for (StencilFaceState& f : second.stencil) {
+    f.func = CompareFunc::Always;
+    f.dppass = StencilOp::IncrWrap;
+  }
+  const ConstantColorShader flat({0.2, 0.1, 0.05, 1.0});
+  const ColorVaryingShader varying;
+  SetupReuse grid, soupA, soupB;
+  Renderer r(fb, threads);
+  for (const RenderState* s : {&first, &second}) {
+    const FragmentShader* shader = s == &first ? static_cast<const FragmentShader*>(&flat) : &varying;
+    std::optional<DeferredDraws> deferred;
+    if (queued) deferred.emplace(r, DeferredDraws::Geometry::Kept);
+    r.draw({.state = s, .vertices = q.soupA, .indices = {}, .shader = shader, .reuse = reuse ? &soupA : nullptr});
+    r.draw({.state = s, .vertices = q.gridVertices, .indices = q.gridIndices, .shader = shader,
+            .reuse = reuse ? &grid : nullptr});
+    r.draw({.state = s, .vertices = q.soupB, .indices = {}, .shader = shader, .reuse = reuse ? &soupB : nullptr});
+  }
+  stats = r.stats();
+  kept = grid.holdsSetups();
+  return fb;
+}
+
+// A triangle drawn (and its setups kept) by a renderer, then its vertices moved by 16 pixels, then
+// drawn again by the same renderer into a cleared stencil: the picture shows which of the two
+// triangles the second draw covered.
+struct MovedTriangle {
+  Framebuffer fb{32, 8};
+  RenderState state = coverageCountingState(fb);
+  std::vector<ClipVertex> vertices = windowTriangles(state.viewport, {{1, 1, 0.5}, {7, 1, 0.5}, {1, 7, 0.5}});
+  std::vector<uint32_t> indices = {0, 1, 2};
+  SetupReuse reuse;
+  Renderer renderer;
+
+  explicit MovedTriangle(int threads = 1) : renderer(fb, threads) {
+    renderer.draw({.state = &state, .vertices = vertices, .indices = indices, .reuse = &reuse});
+    const std::vector<ClipVertex> moved = windowTriangles(state.viewport, {{17, 1, 0.5}, {23, 1, 0.5}, {17, 7, 0.5}});
+    std::copy(moved.begin(), moved.end(), vertices.begin());  // in place: the same array
+  }
+  // The second draw's picture, with the first draw's call but for what `change` changes.
+  std::string redraw(const std::function<void(DrawCall&, RenderState&)>& change) {
+    clearStencil(fb, state, 0);
+    RenderState s = state;
+    DrawCall call{.state = &s, .vertices = vertices, .indices = indices, .reuse = &reuse};
+    change(call, s);
+    renderer.draw(call);
+    return stencilPicture(fb);
+  }
+};
+
+// The picture of a triangle assembled afresh: at (1, 1) before the move, at (17, 1) after.
+std::string freshPicture(bool moved) {
+  Framebuffer fb(32, 8);
+  const RenderState s = coverageCountingState(fb);
+  Renderer r(fb);
+  const double x = moved ? 16.0 : 0.0;
+  draw(r, s, windowTriangles(s.viewport, {{x + 1, 1, 0.5}, {x + 7, 1, 0.5}, {x + 1, 7, 0.5}}));
+  return stencilPicture(fb);
+}
+
+}  // namespace
+
+TEST_CASE("a pass that takes the kept setups gives the bytes and counts of assembling them again",
+          "[raster][reuse]") {
+  for (uint64_t seed : {21u, 22u}) {
+    const QueuedScene q = makeQueuedScene(seed, -1.0);  // the grid in front of the near plane
+    RasterStats referenceStats;
+    bool kept = false;
+    const Framebuffer reference = renderTwoPasses(q, 1, false, false, referenceStats, kept);
+    CHECK_FALSE(kept);
+    for (int threads : {1, 2, 8})
+      for (bool queued : {false, true}) {
+        INFO("seed " << seed << ", " << threads << " threads, queued " << queued);
+        RasterStats stats;
+        const Framebuffer fb = renderTwoPasses(q, threads, queued, true, stats, kept);
+        CHECK(kept);
+        CHECK(sameBytes(reference.color(), fb.color()));
+        CHECK(sameBytes(reference.depthCodes(), fb.depthCodes()));
+        CHECK(sameBytes(reference.stencil(), fb.stencil()));
+        CHECK(stats.trianglesIn == referenceStats.trianglesIn);
+        CHECK(stats.trianglesRasterized == referenceStats.trianglesRasterized);
+        CHECK(stats.trianglesCulled == referenceStats.trianglesCulled);
+        CHECK(stats.fragments == referenceStats.fragments);
+        CHECK(stats.stencilWrites == referenceStats.stencilWrites);
+      }
+    CHECK(referenceStats.trianglesCulled > 1000);  // half the grid faces away, in both passes
+    CHECK(referenceStats.stencilWrites > 5000);    // the second pass passes EQUAL where the first drew
+  }
+}
+
+TEST_CASE("kept setups are taken only for the same arrays, in a state that sets triangles up alike",
+          "[raster][reuse]") {
+  // The caller promises unchanged vertices; breaking the promise shows whether the setups were
+  // taken: the first triangle's pixels (taken) or the moved one's (assembled again).
+  const std::string before = freshPicture(false), after = freshPicture(true);
+  REQUIRE(before != after);
+  Framebuffer empty(32, 8);
+  clearStencil(empty, fullViewportState(empty), 0);
+  const std::string none = stencilPicture(empty);
+  SECTION("the same arrays and state: taken") {
+    MovedTriangle m;
+    CHECK(m.redraw([](DrawCall&, RenderState&) {}) == before);
+  }
+  SECTION("another depth test, blend, stencil op or scissor: taken") {
+    MovedTriangle m;
+    CHECK(m.redraw([](DrawCall&, RenderState& s) {
+      s.depthTest = true;
+      s.depthFunc = CompareFunc::LEqual;
+      s.blend = {true, BlendFactor::One, BlendFactor::One};
+      s.stencil[0].dppass = StencilOp::IncrWrap;
+      s.scissorTest = true;
+      s.scissor = {0, 0, 32, 8};
+    }) == before);
+  }
+  SECTION("culling, front face, polygon offset, depth range, depth clamp or far clipping changed: assembled") {
+    const std::vector<std::function<void(RenderState&)>> changes = {
+        [](RenderState& s) { s.cull = CullMode::Back; },
+        [](RenderState& s) { s.frontFace = FrontFace::CW; },
+        [](RenderState& s) { s.polygonOffset = {true, 1.0, 1.0}; },
+        [](RenderState& s) { s.viewport.nearVal = 0.25; },
+        [](RenderState& s) { s.depthClamp = true; },
+        [](RenderState& s) { s.clipFar = !s.clipFar; },
+    };
+    for (size_t i = 0; i < changes.size(); ++i) {
+      INFO("change " << i);
+      MovedTriangle m;
+      RenderState changed = m.state;
+      changes[i](changed);
+      const bool culled = isCulled(facingOf(1, changed.frontFace), changed.cull);  // the triangle is CCW
+      CHECK(m.redraw([&](DrawCall&, RenderState& s) { s = changed; }) == (culled ? none : after));
+    }
+  }
+  SECTION("another vertex array, index array or renderer: assembled") {
+    MovedTriangle m;
+    const std::vector<ClipVertex> copy = m.vertices;
+    CHECK(m.redraw([&](DrawCall& c, RenderState&) { c.vertices = copy; }) == after);
+    MovedTriangle n;
+    const std::vector<uint32_t> indices = n.indices;
+    CHECK(n.redraw([&](DrawCall& c, RenderState&) { c.indices = indices; }) == after);
+    MovedTriangle o;
+    clearStencil(o.fb, o.state, 0);
+    Renderer other(o.fb);
+    other.draw({.state = &o.state, .vertices = o.vertices, .indices = o.indices, .reuse = &o.reuse});
+    CHECK(stencilPicture(o.fb) == after);
+  }
+  SECTION("queued on two threads: taken") {
+    MovedTriangle m(2);
+    clearStencil(m.fb, m.state, 0);
+    {
+      const DeferredDraws deferred(m.renderer, DeferredDraws::Geometry::Kept);
+      m.renderer.draw({.state = &m.state, .vertices = m.vertices, .indices = m.indices, .reuse = &m.reuse});
+    }
+    CHECK(stencilPicture(m.fb) == before);
+  }
+  SECTION("once per flush: a second draw in the same flush assembles") {
+    MovedTriangle m(2);
+    clearStencil(m.fb, m.state, 0);
+    {
+      const DeferredDraws deferred(m.renderer, DeferredDraws::Geometry::Kept);
+      m.renderer.draw({.state = &m.state, .vertices = m.vertices, .indices = m.indices, .reuse = &m.reuse});
+      m.renderer.draw({.state = &m.state, .vertices = m.vertices, .indices = m.indices, .reuse = &m.reuse});
+    }
+    const std::string both = stencilPicture(m.fb);  // the kept triangle once, the moved one once
+    std::string expected = before;
+    for (size_t i = 0; i < expected.size(); ++i)
+      if (after[i] == '1') expected[i] = '1';
+    CHECK(both == expected);
+  }
+}
+
+TEST_CASE("a draw that clipped a triangle keeps no setups", "[raster][reuse]") {
+  Framebuffer fb(16, 16);
+  const RenderState s = coverageCountingState(fb);
+  std::vector<ClipVertex> v = windowTriangles(s.viewport, {{1, 1, 0.5}, {14, 1, 0.5}, {1, 14, 0.5}});
+  SetupReuse inside, crossing;
+  Renderer r(fb);
+  r.draw({.state = &s, .vertices = v, .reuse = &inside});
+  CHECK(inside.holdsSetups());
+  v[2].position.z = -2.0 * v[2].position.w;  // behind the near plane
+  r.draw({.state = &s, .vertices = v, .reuse = &crossing});
+  CHECK_FALSE(crossing.holdsSetups());
+  CHECK(r.stats().trianglesClipped == 1);
 }

@@ -80,3 +80,33 @@ TEST_CASE("counts of groups of triangles add up to the count of all of them", "[
     CHECK(a.size() >= 3);
   }
 }
+
+TEST_CASE("a reset count forgets every triangle, clear and added count, over the same rows or others",
+          "[raster][bands]") {
+  // reset zeroes only the entries written since the last one: a count reset after triangles,
+  // clears and another's count must split as a new one does.
+  RowWork fresh, reused, other;
+  fresh.reset(64);
+  other.reset(64);
+  other.addTriangle(10, 40, 60, 63, kRegion);
+  reused.reset(64);
+  reused.addTriangle(0, 0, 99, 20, kRegion);
+  reused.addClear(Rect{0, 30, 100, 10});
+  reused.add(other);
+  std::vector<int> a, b;
+  REQUIRE(reused.split(0, 63, 3, 4, a) == 3);
+  REQUIRE(a != std::vector<int>({0, 1, 2, 3}));
+  reused.reset(64);
+  fresh.addTriangle(5, 8, 50, 30, kRegion);
+  reused.addTriangle(5, 8, 50, 30, kRegion);
+  CHECK(fresh.split(0, 63, 3, 4, a) == reused.split(0, 63, 3, 4, b));
+  CHECK(a == b);
+  // Another height: a new list.
+  RowWork taller;
+  taller.reset(128);
+  reused.reset(128);
+  taller.addTriangle(5, 100, 50, 120, Rect{0, 0, 100, 128});
+  reused.addTriangle(5, 100, 50, 120, Rect{0, 0, 100, 128});
+  CHECK(taller.split(0, 127, 3, 4, a) == reused.split(0, 127, 3, 4, b));
+  CHECK(a == b);
+}
