@@ -49,11 +49,13 @@ struct DrawCall {
 // vertices, indices and everything that sets a triangle up — only the depth, stencil and blend
 // tests and the shader change. The first draw given one of these assembles as usual and keeps its
 // setups in it; a later draw given it takes them instead of assembling again when it draws the same
-// vertex and index arrays (the same objects: the caller keeps them unchanged meanwhile) in a
-// state that sets triangles up alike (setsUpAlike), on the same renderer. The same setups, so
-// the same bytes. A draw that clipped a triangle is not kept: the vertices clipping makes last
-// only until its flush. The caller owns it; it holds the setups (and the blocks they are in)
-// until it is destroyed or kept anew. One draw per flush takes it.
+// vertex and index arrays (the same objects, whose positions and indices the caller keeps
+// unchanged meanwhile; the varyings may change, as a Gouraud pass's colours do: they are read
+// when fragments are shaded) in a state that sets triangles up alike (setsUpAlike), on the same
+// renderer. The same setups, so the same bytes. A draw that clipped a triangle is not kept: the
+// vertices clipping makes (their varyings interpolated then) last only until its flush. The
+// caller owns it; it holds the setups (and the blocks they are in) until it is destroyed or kept
+// anew. One draw per flush takes it.
 class SetupReuse {
  public:
   bool holdsSetups() const { return kept_; }

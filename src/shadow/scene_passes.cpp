@@ -1,7 +1,6 @@
 #include "shadow/scene_passes.h"
 
 #include <cmath>
-#include <deque>
 #include <memory>
 #include <numbers>
 
@@ -128,21 +127,23 @@ namespace {
 // What a pass's deferred draws need alive until they are rasterized (DeferredDraws).
 struct PassResources {
   std::vector<std::unique_ptr<FragmentShader>> shaders;
-  std::deque<ClipVertexBuffer> vertices;  // Gouraud: the lit copies of the vertices
 };
 
-// An instance of a pass: how it is lit, and for a Gouraud material with lights its lit vertices.
+// An instance of a pass: how it is lit, and for a Gouraud material its shaded vertices
+// (PreparedInstance::shadedVertices).
 struct LitInstance {
   const PreparedInstance* prepared = nullptr;
   LightingSetup lighting;
   ClipVertexBuffer* litVertices = nullptr;
 };
 
-// The vertices of `p` with each one's Gouraud colour in the colour varyings (gouraudVertexColor).
+// The vertices of `p` with each one's Gouraud colour in the colour varyings (gouraudVertexColor);
+// without lights, the vertices as they are (the pass draws one constant colour).
 void lightVertices(const PreparedInstance& p, const LightingSetup& lighting, ClipVertexBuffer& lit, size_t first,
                    size_t last) {
   for (size_t i = first; i < last; ++i) {
     ClipVertex& v = placeVertex(lit[i], p.vertices[i]);
+    if (lighting.lights.empty()) continue;
     const glm::dvec3 pos(v.varyings[kVaryingPosition], v.varyings[kVaryingPosition + 1], v.varyings[kVaryingPosition + 2]);
     const glm::dvec3 n(v.varyings[kVaryingNormal], v.varyings[kVaryingNormal + 1], v.varyings[kVaryingNormal + 2]);
     const glm::dvec3 c = gouraudVertexColor(lighting, pos, n);
@@ -159,22 +160,21 @@ void drawInstance(Renderer& renderer, const RenderState& state, const LitInstanc
   call.state = &stateFor(state, *p.instance, mirrored);
   call.indices = p.indices;
   call.tag = drawTag(kind, p.index);
+  // A Gouraud material's passes draw its shaded vertices, the others `vertices`: each pass the
+  // same array, whose setups the next pass takes (SetupReuse).
+  call.vertices = item.litVertices ? std::span<const ClipVertex>(*item.litVertices) : std::span<const ClipVertex>(p.vertices);
+  call.reuse = &p.setups;
   if (lighting.lights.empty()) {
     // Ambient only: shadePoint returns the ambient term for every point, so the rasterizer is told
     // it is a constant. Per pixel these are the same bits; for Gouraud every vertex has that
     // colour, and the constant is the exact value its interpolation would round (no interpolation).
     keep.shaders.push_back(std::make_unique<ConstantColorShader>(
         glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0)));
-    call.vertices = p.vertices;
-    call.reuse = &p.setups;
   } else if (!item.litVertices) {
     keep.shaders.push_back(std::make_unique<PerPixelLightingShader>(lighting));
-    call.vertices = p.vertices;
-    call.reuse = &p.setups;
   } else {
     // Gouraud: each vertex lit (drawLit, on the threads), the colour interpolated.
     keep.shaders.push_back(std::make_unique<GouraudShader>());
-    call.vertices = *item.litVertices;
   }
   call.shader = keep.shaders.back().get();
   renderer.draw(call);
@@ -199,8 +199,8 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
     for (const Light& light : lights)
       if (withinRange(light, p.instance->worldBounds)) lighting.lights.push_back(toPhongLight(light));
     if (!includeAmbient && lighting.lights.empty()) continue;
-    if (!lighting.lights.empty() && material.shading == ShadingModel::Gouraud) {
-      item.litVertices = &keep.vertices.emplace_back();
+    if (material.shading == ShadingModel::Gouraud) {
+      item.litVertices = &p.shadedVertices;
       item.litVertices->resize(p.vertices.size());  // constructed by lightVertices
     }
     items.push_back(std::move(item));
@@ -211,7 +211,7 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
   forEachVertexRange(&renderer, counts, [&](size_t i, size_t first, size_t last) {
     lightVertices(*items[i].prepared, items[i].lighting, *items[i].litVertices, first, last);
   });
-  // The prepared vertices and indices, and the lit copies in `keep`, stay put.
+  // The prepared and shaded vertices and the indices stay put.
   const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
   for (const LitInstance& item : items) drawInstance(renderer, state, item, kind, keep);
 }

@@ -25,6 +25,10 @@ struct PreparedInstance {
   VertexTransform transform;     // object -> clip; shadow volumes of this instance must use it too
   ClipVertexBuffer vertices;
   std::span<const uint32_t> indices;  // the mesh's own (triangleIndices)
+  // A Gouraud material's vertices as its passes draw them: the clip positions of `vertices`, the
+  // varyings each vertex's colour for the pass (drawLit) — one array for the frame, so that each
+  // pass draws the same one.
+  mutable ClipVertexBuffer shadedVertices;
   // The setups of its scene draws (ambient, then each light's lit pass: the same triangles in a
   // state that sets them up alike), kept for the frame's next pass.
   mutable SetupReuse setups;

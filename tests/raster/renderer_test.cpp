@@ -699,10 +699,10 @@ TEST_CASE("a draw that clipped a triangle keeps no setups", "[raster][reuse]") {
   std::vector<ClipVertex> v = windowTriangles(s.viewport, {{1, 1, 0.5}, {14, 1, 0.5}, {1, 14, 0.5}});
   SetupReuse inside, crossing;
   Renderer r(fb);
-  r.draw({.state = &s, .vertices = v, .reuse = &inside});
+  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = nullptr, .tag = 0, .reuse = &inside});
   CHECK(inside.holdsSetups());
   v[2].position.z = -2.0 * v[2].position.w;  // behind the near plane
-  r.draw({.state = &s, .vertices = v, .reuse = &crossing});
+  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = nullptr, .tag = 0, .reuse = &crossing});
   CHECK_FALSE(crossing.holdsSetups());
   CHECK(r.stats().trianglesClipped == 1);
 }
