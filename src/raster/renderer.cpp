@@ -254,20 +254,22 @@ void Renderer::draw(const DrawCall& call) {
 
   const size_t triangleCount = trianglesOf(call);
   stats_.trianglesIn += triangleCount;
-  if (call.reuse && canReuse(call)) {  // its indices were checked when its setups were kept
-    call.reuse->flush_ = flushes_;
-    if (pool_ && deferDepth_ == 1 && keptDepth_ == 1) {
+  SetupReuse* const reuse = claimReuse(call);
+  const bool queue = pool_ && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1;
+  if (reuse && canReuse(*reuse, call)) {  // its indices were checked when its setups were kept
+    if (queue) {
       queueAssembly(call, planes, varyingCount);
-      queued_.back().kept = call.reuse;
+      queued_.back().kept = reuse;
       return;
     }
-    drawKeptSetups(call);
+    drawKeptSetups(call, *reuse);
     if (deferDepth_ == 0) flush();
     return;
   }
   checkIndices(call);
-  if (pool_ && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1) {
+  if (queue) {
     queueAssembly(call, planes, varyingCount);
+    queued_.back().call.reuse = reuse;  // keeps its setups there after assembly
     return;
   }
   const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
@@ -295,11 +297,10 @@ void Renderer::draw(const DrawCall& call) {
     clipped += assembly_[c].stats.trianglesClipped;
   }
   const bool drawn = collectSetups(std::span(assembly_.data(), chunks), pending);
-  if (call.reuse && clipped == 0) keepForReuse(call, pending.first, pendingSetups_.size() - pending.first, culled);
+  if (reuse && clipped == 0) keepForReuse(call, *reuse, pending.first, pendingSetups_.size() - pending.first, culled);
   if (drawn) pending_.push_back(pending);
   if (deferDepth_ == 0) flush();
 }
-
 
 // Moves the setups the workspaces assembled into the pending lists, counts them, and fills in
 // the rows `pending` touches; false when it has nothing to rasterize (no setups, or none meets its
@@ -366,17 +367,23 @@ bool setsUpAlike(const RenderState& a, const RenderState& b) {
          a.polygonOffset.units == b.polygonOffset.units && a.depthClamp == b.depthClamp && a.clipFar == b.clipFar;
 }
 
-bool Renderer::canReuse(const DrawCall& call) const {
-  const SetupReuse& r = *call.reuse;
-  return r.kept_ && r.renderer_ == serial_ && r.flush_ != flushes_ && r.vertices_ == call.vertices.data() &&
+SetupReuse* Renderer::claimReuse(const DrawCall& call) {
+  SetupReuse* r = call.reuse;
+  if (!r || (r->claimRenderer_ == serial_ && r->claimFlush_ == flushes_)) return nullptr;
+  r->claimRenderer_ = serial_;
+  r->claimFlush_ = flushes_;
+  return r;
+}
+
+bool Renderer::canReuse(const SetupReuse& r, const DrawCall& call) const {
+  return r.kept_ && r.renderer_ == serial_ && r.vertices_ == call.vertices.data() &&
          r.vertexCount_ == call.vertices.size() && r.indices_ == call.indices.data() &&
          r.indexCount_ == call.indices.size() && setsUpAlike(r.state_, *call.state);
 }
 
 // The kept setups as a pending draw of this call's state: no assembly, and their rows' work is
 // counted at the flush.
-void Renderer::drawKeptSetups(const DrawCall& call) {
-  const SetupReuse& r = *call.reuse;
+void Renderer::drawKeptSetups(const DrawCall& call, const SetupReuse& r) {
   PendingDraw pending;
   pending.region = drawRegion(*call.state, fb_);
   pending.state = *call.state;
@@ -393,11 +400,9 @@ void Renderer::drawKeptSetups(const DrawCall& call) {
 
 // Keeps the call's setups — pendingSetups_[first, first + count), in blocks already in
 // pendingBlocks_ — in call.reuse.
-void Renderer::keepForReuse(const DrawCall& call, size_t first, size_t count, uint64_t culled) {
-  SetupReuse& r = *call.reuse;
+void Renderer::keepForReuse(const DrawCall& call, SetupReuse& r, size_t first, size_t count, uint64_t culled) {
   r.kept_ = true;
   r.renderer_ = serial_;
-  r.flush_ = flushes_;
   r.vertices_ = call.vertices.data();
   r.vertexCount_ = call.vertices.size();
   r.indices_ = call.indices.data();
@@ -427,7 +432,6 @@ void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int
   pending.state = *call.state;
   pending.shader = call.shader;
   pending.watch = watch_;
-  pending.reuse = call.reuse;
 }
 
 void Renderer::assembleQueued() {
@@ -577,7 +581,7 @@ void Renderer::assembleQueued() {
 void Renderer::keepQueuedForReuse() {
   queuedKeep_.clear();
   for (size_t d = 0; d < queued_.size(); ++d)
-    if (queued_[d].call.reuse && !queued_[d].kept) queuedKeep_.push_back({d, 0, 0});
+    if (queued_[d].call.reuse && !queued_[d].kept) queuedKeep_.push_back({d, 0, 0});  // claimed in draw()
   if (queuedKeep_.empty()) return;
   for (const QueuedPiece& piece : queuedPieces_) {
     auto at = std::lower_bound(queuedKeep_.begin(), queuedKeep_.end(), piece.draw,
@@ -590,7 +594,7 @@ void Renderer::keepQueuedForReuse() {
     const KeptDraw& k = queuedKeep_[size_t(i)];
     const QueuedAssembly& q = queued_[k.draw];
     const PendingDraw& pending = pending_[q.pending];
-    if (k.clipped == 0) keepForReuse(q.call, pending.first, pending.count, k.culled);
+    if (k.clipped == 0) keepForReuse(q.call, *q.call.reuse, pending.first, pending.count, k.culled);
   });
 }
 

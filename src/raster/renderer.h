@@ -63,8 +63,9 @@ class SetupReuse {
  private:
   friend class Renderer;
   bool kept_ = false;
-  uint64_t renderer_ = 0;  // the Renderer's serial number
-  uint64_t flush_ = 0;  // the renderer's flush that last kept or took it
+  uint64_t renderer_ = 0;  // the serial number of the Renderer that kept the setups
+  // The draw that has it in the current flush of a renderer (one draw per flush keeps or takes).
+  uint64_t claimRenderer_ = 0, claimFlush_ = 0;
   const ClipVertex* vertices_ = nullptr;
   size_t vertexCount_ = 0;
   const uint32_t* indices_ = nullptr;
@@ -178,7 +179,6 @@ class Renderer {
     size_t first = 0, count = 0;  // its setups in pendingSetups_
     int minY = 0, maxY = -1;      // the rows its triangles may touch
     bool workCounted = false;     // its setups are in rowWork_ (assembleQueued counted them)
-    SetupReuse* reuse = nullptr;  // the call's, to keep its setups in once they are assembled
   };
   friend class DeferredDraws;
   bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
@@ -205,11 +205,13 @@ class Renderer {
     int minY = 0, maxY = -1;  // after assembly: the rows its setups span
     uint64_t culled = 0, clipped = 0;  // after assembly: its triangles culled and clipped
   };
-  // SetupReuse: whether the call may take the setups kept in call.reuse; takes them (a pending
-  // draw without assembly); keeps a pending draw's setups in it.
-  bool canReuse(const DrawCall& call) const;
-  void drawKeptSetups(const DrawCall& call);
-  void keepForReuse(const DrawCall& call, size_t first, size_t count, uint64_t culled);
+  // SetupReuse: call.reuse for this draw (nullptr without one, or when another draw of this
+  // flush has it); whether the call may take the setups kept in it; takes them (a pending draw
+  // without assembly); keeps a pending draw's setups in it.
+  SetupReuse* claimReuse(const DrawCall& call);
+  bool canReuse(const SetupReuse& reuse, const DrawCall& call) const;
+  void drawKeptSetups(const DrawCall& call, const SetupReuse& kept);
+  void keepForReuse(const DrawCall& call, SetupReuse& reuse, size_t first, size_t count, uint64_t culled);
   void keepQueuedForReuse();
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();

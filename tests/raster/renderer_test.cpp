@@ -693,6 +693,33 @@ TEST_CASE("kept setups are taken only for the same arrays, in a state that sets 
   }
 }
 
+TEST_CASE("of two draws given one SetupReuse in a flush, the first keeps its setups", "[raster][reuse]") {
+  // Two triangles drawn in one pass with the same SetupReuse (assembled on two threads, each
+  // draw would keep its setups): only the first does. Then the first's vertices are moved in place
+  // and drawn again: its kept setups are taken (the picture before the move).
+  for (int threads : {1, 2}) {
+    INFO(threads << " threads");
+    MovedTriangle m(threads);  // its first draw kept the setups in m.reuse; vertices now moved
+    SetupReuse shared;
+    std::vector<ClipVertex> second = windowTriangles(m.state.viewport, {{9, 1, 0.5}, {15, 1, 0.5}, {9, 7, 0.5}});
+    std::vector<ClipVertex> first = windowTriangles(m.state.viewport, {{1, 1, 0.5}, {7, 1, 0.5}, {1, 7, 0.5}});
+    {
+      const DeferredDraws deferred(m.renderer, DeferredDraws::Geometry::Kept);
+      m.renderer.draw({.state = &m.state, .vertices = first, .indices = m.indices, .shader = nullptr, .tag = 0,
+                       .reuse = &shared});
+      m.renderer.draw({.state = &m.state, .vertices = second, .indices = m.indices, .shader = nullptr, .tag = 0,
+                       .reuse = &shared});
+    }
+    REQUIRE(shared.holdsSetups());
+    const std::vector<ClipVertex> moved = windowTriangles(m.state.viewport, {{17, 1, 0.5}, {23, 1, 0.5}, {17, 7, 0.5}});
+    std::copy(moved.begin(), moved.end(), first.begin());
+    clearStencil(m.fb, m.state, 0);
+    m.renderer.draw({.state = &m.state, .vertices = first, .indices = m.indices, .shader = nullptr, .tag = 0,
+                     .reuse = &shared});
+    CHECK(stencilPicture(m.fb) == freshPicture(false));
+  }
+}
+
 TEST_CASE("a draw that clipped a triangle keeps no setups", "[raster][reuse]") {
   Framebuffer fb(16, 16);
   const RenderState s = coverageCountingState(fb);
