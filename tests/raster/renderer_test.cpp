@@ -571,6 +571,16 @@ struct MovedTriangle {
     renderer.draw(call);
     return stencilPicture(fb);
   }
+  // The same, unchanged, `draws` times in one pass that keeps its geometry (queued at two threads).
+  std::string redrawQueued(int draws) {
+    clearStencil(fb, state, 0);
+    {
+      const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
+      for (int i = 0; i < draws; ++i)
+        renderer.draw({.state = &state, .vertices = vertices, .indices = indices, .reuse = &reuse});
+    }
+    return stencilPicture(fb);
+  }
 };
 
 // The picture of a triangle assembled afresh: at (1, 1) before the move, at (17, 1) after.
@@ -670,22 +680,11 @@ TEST_CASE("kept setups are taken only for the same arrays, in a state that sets 
   }
   SECTION("queued on two threads: taken") {
     MovedTriangle m(2);
-    clearStencil(m.fb, m.state, 0);
-    {
-      const DeferredDraws deferred(m.renderer, DeferredDraws::Geometry::Kept);
-      m.renderer.draw({.state = &m.state, .vertices = m.vertices, .indices = m.indices, .reuse = &m.reuse});
-    }
-    CHECK(stencilPicture(m.fb) == before);
+    CHECK(m.redrawQueued(1) == before);
   }
   SECTION("once per flush: a second draw in the same flush assembles") {
     MovedTriangle m(2);
-    clearStencil(m.fb, m.state, 0);
-    {
-      const DeferredDraws deferred(m.renderer, DeferredDraws::Geometry::Kept);
-      m.renderer.draw({.state = &m.state, .vertices = m.vertices, .indices = m.indices, .reuse = &m.reuse});
-      m.renderer.draw({.state = &m.state, .vertices = m.vertices, .indices = m.indices, .reuse = &m.reuse});
-    }
-    const std::string both = stencilPicture(m.fb);  // the kept triangle once, the moved one once
+    const std::string both = m.redrawQueued(2);  // the kept triangle once, the moved one once
     std::string expected = before;
     for (size_t i = 0; i < expected.size(); ++i)
       if (after[i] == '1') expected[i] = '1';
