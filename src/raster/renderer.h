@@ -17,20 +17,12 @@
 #include "raster/raster_stats.h"
 #include "raster/render_state.h"
 #include "raster/row_work.h"
+#include "raster/setup_reuse.h"
 #include "raster/thread_pool.h"
 #include "raster/triangle_setup.h"
 #include "raster/vertex.h"
 
 namespace shadowref {
-
-class SetupReuse;
-
-// The pixels a setup may cover (its minX … maxY), in a compact list beside the setups: the
-// flush's loops (a draw's rows, the bands' work estimate) and each band's choice of its setups
-// read 16 bytes a triangle instead of a line of a few-hundred-byte setup another thread wrote.
-struct SetupBounds {
-  int minX, minY, maxX, maxY;
-};
 
 struct DrawCall {
   const RenderState* state = nullptr;
@@ -43,44 +35,6 @@ struct DrawCall {
   // Set-up triangles kept for a later draw of the same vertices and indices (SetupReuse).
   SetupReuse* reuse = nullptr;
 };
-
-// A draw's set-up triangles, kept for a later draw of the same triangles in another pass: a
-// scene's instances are drawn once for the ambient pass and once for each light, with the same
-// vertices, indices and everything that sets a triangle up — only the depth, stencil and blend
-// tests and the shader change. The first draw given one of these assembles as usual and keeps its
-// setups in it; a later draw given it takes them instead of assembling again when it draws the same
-// vertex and index arrays (the same objects, whose positions and indices the caller keeps
-// unchanged meanwhile; the varyings may change, as a Gouraud pass's colours do: they are read
-// when fragments are shaded) in a state that sets triangles up alike (setsUpAlike), on the same
-// renderer. The same setups, so the same bytes. A draw that clipped a triangle is not kept: the
-// vertices clipping makes (their varyings interpolated then) last only until its flush. The
-// caller owns it; it holds the setups (and the blocks they are in) until it is destroyed or kept
-// anew. One draw per flush takes it.
-class SetupReuse {
- public:
-  bool holdsSetups() const { return kept_; }
-
- private:
-  friend class Renderer;
-  bool kept_ = false;
-  uint64_t renderer_ = 0;  // the serial number of the Renderer that kept the setups
-  // The draw that has it in the current flush of a renderer (one draw per flush keeps or takes).
-  uint64_t claimRenderer_ = 0, claimFlush_ = 0;
-  const ClipVertex* vertices_ = nullptr;
-  size_t vertexCount_ = 0;
-  const uint32_t* indices_ = nullptr;
-  size_t indexCount_ = 0;
-  RenderState state_;
-  std::vector<const TriangleSetup*> setups_;
-  std::vector<SetupBounds> bounds_;
-  uint64_t culled_ = 0;
-  int minY_ = 0, maxY_ = -1;
-  std::vector<std::shared_ptr<const SetupBlock>> blocks_;  // where setups_ point
-};
-
-// Whether two states set a draw's triangles up alike: the same clipping, window transform,
-// facing, culling and depth offset (the tests, masks, blending and scissor do not enter a setup).
-bool setsUpAlike(const RenderState& a, const RenderState& b);
 
 class Renderer {
  public:
@@ -232,7 +186,7 @@ class Renderer {
 
   Framebuffer& fb_;
   const uint64_t serial_;  // this renderer among all made in the process (SetupReuse)
-  uint64_t flushes_ = 0;   // flushes done (SetupReuse: one draw per flush takes one)
+  uint64_t flushes_ = 0;   // flushes done (SetupReuse: one draw per flush has one)
   ThreadPool* pool_ = nullptr;  // the calling thread's (threadPoolForThisThread); nullptr: one thread
   // A band's counters, on cache lines of their own: the band's thread adds to them per triangle
   // (per chunk of fragments in a shaded pass), and a line shared with the next band's counters

@@ -70,6 +70,13 @@ struct TriangleSetup {
   }
 };
 
+// The pixels a setup may cover (its minX … maxY), in a compact list beside the setups: the
+// flush's loops (a draw's rows, the bands' work estimate) and each band's choice of its setups
+// read 16 bytes a triangle instead of a line of a few-hundred-byte setup another thread wrote.
+struct SetupBounds {
+  int minX, minY, maxX, maxY;
+};
+
 // The setups of a block of triangles, set up in place: emplace_back() leaves the setup
 // unconstructed (no zero-fill of a few hundred bytes that setupTriangle writes again).
 using SetupBlock = std::vector<TriangleSetup, ConstructLaterAllocator<TriangleSetup>>;
