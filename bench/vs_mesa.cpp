@@ -7,7 +7,8 @@
 // process gives every configuration the same start. Runs alternate between the configurations,
 // round by round in A B C … C B A order, because llvmpipe's timings jump between runs; each run
 // reports the median of its frames, each configuration the median of its runs. The houses and
-// lights series run every point once a round and fit the fastest run of each point.
+// lights series run every point once a round (each round from another point on) and fit the
+// fastest run of each point.
 //
 // Both run twice over, in two like-for-like pairs: Mesa with GL's fixed-function lighting (per
 // vertex) against shadowref with every material switched to Gouraud shading (the same lighting
@@ -680,18 +681,22 @@ std::vector<std::vector<Measured>> compareScenes(const Settings& s, std::ofstrea
   return all;
 }
 
-// A series' points measured round by round, each round every point once — 1 … n, then n … 1 —
-// and within a point the configurations alternating as in measure(). A slow stretch of the host
-// (minutes at a time here) then falls on different points in different rounds instead of on
-// every run of the points it meets.
+// A series' points measured round by round, each round every point once, and within a point the
+// configurations alternating as in measure(). Round r starts r/rounds of the way along the points
+// and wraps around, so that every point's runs lie about a round apart: a slow stretch of the host
+// (minutes at a time here) then falls on different points in different rounds instead of on every
+// run of the points it meets. (Rounds that went 1 … n, then n … 1, ran the end points twice in a
+// row at each turn: in run AH the 8-house point's fastest of five runs met a slow stretch.)
 std::vector<std::vector<Measured>> measureSeries(const std::vector<SceneCase>& cases, const std::vector<Config>& configs,
                                                  const Settings& s) {
   std::vector<std::vector<Measured>> m(cases.size(), std::vector<Measured>(configs.size()));
   Settings oneRound = s;
   oneRound.rounds = 1;
+  const size_t n = cases.size();
   for (int round = 0; round < s.rounds; ++round) {
-    for (size_t j = 0; j < cases.size(); ++j) {
-      const size_t i = round % 2 == 0 ? j : cases.size() - 1 - j;
+    const size_t start = size_t(round) * n / size_t(s.rounds);
+    for (size_t j = 0; j < n; ++j) {
+      const size_t i = (start + j) % n;
       const std::vector<Measured> r = measure(cases[i], configs, oneRound, round);
       for (size_t k = 0; k < configs.size(); ++k) m[i][k].add(r[k]);
     }
@@ -736,7 +741,7 @@ ScalingFits scaling(const Settings& s, std::ofstream& csv) {
     // The fastest run of each point: the host only ever adds time, so the fastest of a point's
     // runs is the one least slowed (the CSV keeps the median and the slowest too).
     std::printf("\n%s: ms per frame, the fastest of %d runs of %d frames (each round runs every point\n"
-                "once, in alternating order)\n",
+                "once, each round from another point on)\n",
                 ser.title.c_str(), fewer.rounds, fewer.frames);
     std::printf("%8s %9s %9s %9s %9s   %3s %9s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "llpp-1t",
                 "", "sr-1t", "sr-2t", "llvm-1t", "llpp-1t");
