@@ -16,11 +16,8 @@ class RowWork {
   // Forgets every triangle and clear, for a framebuffer of `rows` rows: zeroes what was written
   // (a flush resets a list per assembly task, of 2049 entries for a 2048² map).
   void reset(int rows) {
-    if (diff_.size() == size_t(rows) + 1 && lowest_ <= highest_) {
-      std::fill(diff_.begin() + std::ptrdiff_t(lowest_), diff_.begin() + std::ptrdiff_t(highest_) + 1, 0);
-    } else if (diff_.size() != size_t(rows) + 1) {
-      diff_.assign(size_t(rows) + 1, 0);
-    }
+    if (diff_.size() != size_t(rows) + 1) diff_.assign(size_t(rows) + 1, 0);
+    else if (lowest_ <= highest_) std::fill(diff_.begin() + std::ptrdiff_t(lowest_), diff_.begin() + std::ptrdiff_t(highest_) + 1, 0);
     lowest_ = diff_.size();
     highest_ = 0;
   }

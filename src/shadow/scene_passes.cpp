@@ -134,7 +134,7 @@ struct PassResources {
 struct LitInstance {
   const PreparedInstance* prepared = nullptr;
   LightingSetup lighting;
-  ClipVertexBuffer* litVertices = nullptr;
+  ClipVertexBuffer* shadedVertices = nullptr;
 };
 
 // The vertices of `p` with each one's Gouraud colour in the colour varyings (gouraudVertexColor);
@@ -162,7 +162,7 @@ void drawInstance(Renderer& renderer, const RenderState& state, const LitInstanc
   call.tag = drawTag(kind, p.index);
   // A Gouraud material's passes draw its shaded vertices, the others `vertices`: each pass the
   // same array, whose setups the next pass takes (SetupReuse).
-  call.vertices = item.litVertices ? std::span<const ClipVertex>(*item.litVertices) : std::span<const ClipVertex>(p.vertices);
+  call.vertices = item.shadedVertices ? std::span<const ClipVertex>(*item.shadedVertices) : std::span<const ClipVertex>(p.vertices);
   call.reuse = &p.setups;
   if (lighting.lights.empty()) {
     // Ambient only: shadePoint returns the ambient term for every point, so the rasterizer is told
@@ -170,7 +170,7 @@ void drawInstance(Renderer& renderer, const RenderState& state, const LitInstanc
     // colour, and the constant is the exact value its interpolation would round (no interpolation).
     keep.shaders.push_back(std::make_unique<ConstantColorShader>(
         glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0)));
-  } else if (!item.litVertices) {
+  } else if (!item.shadedVertices) {
     keep.shaders.push_back(std::make_unique<PerPixelLightingShader>(lighting));
   } else {
     // Gouraud: each vertex lit (drawLit, on the threads), the colour interpolated.
@@ -200,16 +200,16 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
       if (withinRange(light, p.instance->worldBounds)) lighting.lights.push_back(toPhongLight(light));
     if (!includeAmbient && lighting.lights.empty()) continue;
     if (material.shading == ShadingModel::Gouraud) {
-      item.litVertices = &p.shadedVertices;
-      item.litVertices->resize(p.vertices.size());  // constructed by lightVertices
+      item.shadedVertices = &p.shadedVertices;
+      item.shadedVertices->resize(p.vertices.size());  // constructed by lightVertices
     }
     items.push_back(std::move(item));
   }
   // The Gouraud instances' vertices lit on all threads, before any draw.
   std::vector<size_t> counts(items.size());
-  for (size_t i = 0; i < items.size(); ++i) counts[i] = items[i].litVertices ? items[i].litVertices->size() : 0;
+  for (size_t i = 0; i < items.size(); ++i) counts[i] = items[i].shadedVertices ? items[i].shadedVertices->size() : 0;
   forEachVertexRange(&renderer, counts, [&](size_t i, size_t first, size_t last) {
-    lightVertices(*items[i].prepared, items[i].lighting, *items[i].litVertices, first, last);
+    lightVertices(*items[i].prepared, items[i].lighting, *items[i].shadedVertices, first, last);
   });
   // The prepared and shaded vertices and the indices stay put.
   const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
