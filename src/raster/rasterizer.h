@@ -170,35 +170,79 @@ void spanRows(const TriangleSetup& t, int x0, int y0, int y1, int64_t width, int
   }
 }
 
+// Starts an edge's limit at the row whose biased edge value at the first column is `value`.
+inline void startLimit(EdgeLimit& limit, const TriangleSetup& t, int i, int64_t value) {
+  const int64_t s = t.stepX[i];
+  if (s > 0) limit.start(-value + s - 1, -t.stepY[i], s);  // ceil(-E / s)
+  else limit.start(value, t.stepY[i], -s);                 // floor(E / -s)
+}
+
+// The rows of a triangle with no horizontal edge: one edge on one side, two on the other, which
+// meet at the middle vertex M. A row whose sample line is below M's needs only the lower of the
+// two, one at or above it only the upper — two EdgeLimits a row, not three. Below M, inside the
+// heights between the lowest vertex B and M, the wedge of the single edge and the lower one (both
+// through B) is the triangle itself, strictly inside the upper edge's half-plane (E_upper >= 1
+// there, so its bias changes nothing); likewise above M. On M's own sample line both edges cross
+// at M with the same bias (edges of one side are both left or both right edges), so either limits
+// that row alike. An edge's limit is started at the first row it is stepped from: a band that
+// sees one part of the triangle starts two limits.
+template <bool WithEdges, bool PairOnRight, class SpanSink>
+void rowsAroundMiddle(const TriangleSetup& t, int x0, int y0, int y1, int64_t width, int64_t row[3], int single,
+                      const int pairEdges[2], SpanSink& sink) {
+  // The edge of the pair that is not edge k ends at vertex k; the pair's shared vertex is M.
+  const int m = 3 - pairEdges[0] - pairEdges[1];
+  const bool firstIsLower = t.v[pairEdges[1]].y < t.v[m].y;  // pairEdges[0] joins M and v[pairEdges[1]]
+  const int lower = firstIsLower ? pairEdges[0] : pairEdges[1], upper = firstIsLower ? pairEdges[1] : pairEdges[0];
+  // Rows up to lastBelow sample below M.
+  const int64_t lastBelow = floorDiv(t.v[m].y - kSubpixelHalf - 1, kSubpixelOne);
+  EdgeLimit one, pair;
+  startLimit(one, t, single, row[single]);
+  auto run = [&](int from, int to) {
+    EdgeLimit* lefts = PairOnRight ? &one : &pair;
+    EdgeLimit* rights = PairOnRight ? &pair : &one;
+    spanRows<WithEdges, 1, 1>(t, x0, from, to, width, row, lefts, 1, rights, 1, nullptr, 0, sink);
+  };
+  int y = y0;
+  if (y <= lastBelow) {
+    startLimit(pair, t, lower, row[lower]);
+    const int to = int(std::min<int64_t>(y1, lastBelow));
+    run(y, to);
+    y = to + 1;
+  }
+  if (y > y1) return;
+  startLimit(pair, t, upper, t.edgeAt(upper, x0, y) + t.bias[upper]);
+  run(y, y1);
+}
+
 template <bool WithEdges, class SpanSink>
 void spans(const TriangleSetup& t, const Rect& region, SpanSink& sink) {
   const int x0 = std::max(t.minX, region.x), x1 = std::min(t.maxX, region.x + region.width - 1);
   const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
   if (x0 > x1 || y0 > y1) return;
+  const int64_t width = x1 - x0;
   int64_t row[3];
-  // Slot 0 of each side stands for "no limit" when the triangle has no edge of that side.
-  EdgeLimit left[3], right[3];
-  int lefts = 0, rights = 0;
-  int flat[3];  // horizontal edges (stepX = 0): the row is covered only while E >= 0
-  int flats = 0;
+  int leftEdges[3], rightEdges[3], flat[3];  // flat: horizontal edges (stepX = 0), covered while E >= 0
+  int lefts = 0, rights = 0, flats = 0;
   for (int i = 0; i < 3; ++i) {
     row[i] = t.edgeAt(i, x0, y0) + t.bias[i];
     const int64_t s = t.stepX[i];
-    if (s > 0) left[lefts++].start(-row[i] + s - 1, -t.stepY[i], s);  // ceil(-E / s)
-    else if (s < 0) right[rights++].start(row[i], t.stepY[i], -s);     // floor(E / -s)
+    if (s > 0) leftEdges[lefts++] = i;
+    else if (s < 0) rightEdges[rights++] = i;
     else flat[flats++] = i;
   }
-  const int64_t width = x1 - x0;
-  if (lefts == 0) left[0].start(0, 0, 1);           // lo = 0 on every row
-  if (rights == 0) right[0].start(width, 0, 1);     // hi = width on every row
   // The usual triangle has no horizontal edge: one edge on one side, two on the other.
   if (flats == 0 && lefts == 1 && rights == 2)
-    spanRows<WithEdges, 1, 2>(t, x0, y0, y1, width, row, left, lefts, right, rights, flat, flats, sink);
-  else if (flats == 0 && lefts == 2 && rights == 1)
-    spanRows<WithEdges, 2, 1>(t, x0, y0, y1, width, row, left, lefts, right, rights, flat, flats, sink);
-  else
-    spanRows<WithEdges, 0, 0>(t, x0, y0, y1, width, row, left, std::max(lefts, 1), right, std::max(rights, 1), flat,
-                              flats, sink);
+    return rowsAroundMiddle<WithEdges, true>(t, x0, y0, y1, width, row, leftEdges[0], rightEdges, sink);
+  if (flats == 0 && lefts == 2 && rights == 1)
+    return rowsAroundMiddle<WithEdges, false>(t, x0, y0, y1, width, row, rightEdges[0], leftEdges, sink);
+  // Slot 0 of each side stands for "no limit" when the triangle has no edge of that side.
+  EdgeLimit left[3], right[3];
+  for (int k = 0; k < lefts; ++k) startLimit(left[k], t, leftEdges[k], row[leftEdges[k]]);
+  for (int k = 0; k < rights; ++k) startLimit(right[k], t, rightEdges[k], row[rightEdges[k]]);
+  if (lefts == 0) left[0].start(0, 0, 1);        // lo = 0 on every row
+  if (rights == 0) right[0].start(width, 0, 1);  // hi = width on every row
+  spanRows<WithEdges, 0, 0>(t, x0, y0, y1, width, row, left, std::max(lefts, 1), right, std::max(rights, 1), flat,
+                            flats, sink);
 }
 
 }  // namespace detail
