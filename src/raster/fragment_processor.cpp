@@ -520,7 +520,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   v8u passed8{};  // passed tests per lane, summed once per triangle rather than per row
   if (isNarrow(t, region, width)) {
     v8u covered8{};  // covered pixels per lane
-    rasterizeNarrowRows(t, region, width, [&, depth, hasDepth, width](int y, int window, NarrowLanes covered) {
+    rasterizeNarrowRows(t, region, width, [&, depth, hasDepth, width](int y, int window, NarrowLanes covered) __attribute__((always_inline)) {
       const size_t rowStart = size_t(y) * size_t(width);
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
       const Block rowBlock = block;  // a copy, as in the span rows below
@@ -531,7 +531,10 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     for (int lane = 0; lane < 8; ++lane) rowsFragments += uint64_t(covered8[lane]);
   } else {
     const double* slopes = columnDepthParts(t, region, width);
-    rasterizeRowSpans(t, region, [&, depth, hasDepth, width, slopes](int y, int xl, int xr) {
+    // Inlined into the row walk: GCC called it once a row, saving and restoring six registers and
+    // reloading the closure each time (city-64: 3 % of the frame's instructions, 4.5 % of its
+    // volume pass's time).
+    auto spanRow = [&, depth, hasDepth, width, slopes](int y, int xl, int xr) __attribute__((always_inline)) {
       const size_t rowStart = size_t(y) * size_t(width);
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
       // Copies for the row: stores through the buffers may alias anything in memory, so values
@@ -562,7 +565,8 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
       }
       passed8 += rowPassed8;
       rowsFragments += uint64_t(xr - xl + 1);
-    });
+    };
+    rasterizeRowSpans(t, region, spanRow);
   }
   for (int lane = 0; lane < 8; ++lane) rowsPassed += uint64_t(passed8[lane]);
   fragments += rowsFragments;
