@@ -134,26 +134,20 @@ struct EdgeLimit {
 
 namespace detail {
 
-// The row loop of rasterizeSpans with the number of left and right edges fixed at compile time
-// (0 means "given at run time", with the horizontal edges), and the edge values at the span start
-// computed only when the sink takes them.
-template <bool WithEdges, int Lefts, int Rights, class SpanSink>
+// The row loop of rasterizeSpans for any triangle: up to three limits a side, horizontal edges
+// tested on their edge values; the edge values at the span start computed only when the sink
+// takes them.
+template <bool WithEdges, class SpanSink>
 void spanRows(const TriangleSetup& t, int x0, int y0, int y1, int64_t width, int64_t row[3], EdgeLimit* left,
               int lefts, EdgeLimit* right, int rights, const int* flat, int flats, SpanSink& sink) {
-  constexpr bool fixed = Lefts > 0;
-  if constexpr (fixed) {
-    lefts = Lefts;
-    rights = Rights;
-  }
   const bool trackRows = WithEdges || flats > 0;
   for (int y = y0; y <= y1; ++y) {
     int64_t lo = left[0].q, hi = std::min(width, right[0].q);
     for (int k = 1; k < lefts; ++k) lo = std::max(lo, left[k].q);
     for (int k = 1; k < rights; ++k) hi = std::min(hi, right[k].q);
     lo = std::max<int64_t>(lo, 0);
-    if constexpr (!fixed)
-      for (int k = 0; k < flats; ++k)
-        if (row[flat[k]] < 0) hi = -1;
+    for (int k = 0; k < flats; ++k)
+      if (row[flat[k]] < 0) hi = -1;
     if (lo <= hi) {
       if constexpr (WithEdges) {
         int64_t e[3];
@@ -168,6 +162,41 @@ void spanRows(const TriangleSetup& t, int x0, int y0, int y1, int64_t width, int
     for (int k = 0; k < lefts; ++k) left[k].nextRow();
     for (int k = 0; k < rights; ++k) right[k].nextRow();
   }
+}
+
+// The same for one limit a side (rowsAroundMiddle's parts), with the limits, the edge values and
+// the steps in locals through the loop: the sink's byte stores may alias anything, so values
+// reached through pointers would go to memory and back every row.
+template <bool WithEdges, class SpanSink>
+void spanRowsOfTwo(const TriangleSetup& t, int x0, int y0, int y1, int64_t width, int64_t row[3], EdgeLimit& left,
+                   EdgeLimit& right, SpanSink& sink) {
+  EdgeLimit l = left, r = right;
+  int64_t edges[3], stepX[3], stepY[3], bias[3];
+  for (int i = 0; i < 3; ++i) {
+    edges[i] = row[i];
+    stepX[i] = t.stepX[i];
+    stepY[i] = t.stepY[i];
+    bias[i] = t.bias[i];
+  }
+  for (int y = y0; y <= y1; ++y) {
+    const int64_t lo = std::max<int64_t>(l.q, 0), hi = std::min(width, r.q);
+    if (lo <= hi) {
+      if constexpr (WithEdges) {
+        int64_t e[3];
+        for (int i = 0; i < 3; ++i) e[i] = edges[i] + stepX[i] * lo - bias[i];
+        sink(y, x0 + int(lo), x0 + int(hi), e);
+      } else {
+        sink(y, x0 + int(lo), x0 + int(hi));
+      }
+    }
+    if constexpr (WithEdges)
+      for (int i = 0; i < 3; ++i) edges[i] += stepY[i];
+    l.nextRow();
+    r.nextRow();
+  }
+  left = l;
+  right = r;
+  for (int i = 0; i < 3; ++i) row[i] = edges[i];
 }
 
 // Starts an edge's limit at the row whose biased edge value at the first column is `value`.
@@ -198,9 +227,8 @@ void rowsAroundMiddle(const TriangleSetup& t, int x0, int y0, int y1, int64_t wi
   EdgeLimit one, pair;
   startLimit(one, t, single, row[single]);
   auto run = [&](int from, int to) {
-    EdgeLimit* lefts = PairOnRight ? &one : &pair;
-    EdgeLimit* rights = PairOnRight ? &pair : &one;
-    spanRows<WithEdges, 1, 1>(t, x0, from, to, width, row, lefts, 1, rights, 1, nullptr, 0, sink);
+    if (PairOnRight) spanRowsOfTwo<WithEdges>(t, x0, from, to, width, row, one, pair, sink);
+    else spanRowsOfTwo<WithEdges>(t, x0, from, to, width, row, pair, one, sink);
   };
   int y = y0;
   if (y <= lastBelow) {
@@ -241,8 +269,8 @@ void spans(const TriangleSetup& t, const Rect& region, SpanSink& sink) {
   for (int k = 0; k < rights; ++k) startLimit(right[k], t, rightEdges[k], row[rightEdges[k]]);
   if (lefts == 0) left[0].start(0, 0, 1);        // lo = 0 on every row
   if (rights == 0) right[0].start(width, 0, 1);  // hi = width on every row
-  spanRows<WithEdges, 0, 0>(t, x0, y0, y1, width, row, left, std::max(lefts, 1), right, std::max(rights, 1), flat,
-                            flats, sink);
+  spanRows<WithEdges>(t, x0, y0, y1, width, row, left, std::max(lefts, 1), right, std::max(rights, 1), flat, flats,
+                      sink);
 }
 
 }  // namespace detail
