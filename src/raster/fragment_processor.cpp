@@ -520,7 +520,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   v8u passed8{};  // passed tests per lane, summed once per triangle rather than per row
   if (isNarrow(t, region, width)) {
     v8u covered8{};  // covered pixels per lane
-    rasterizeNarrowRows(t, region, width, [&, depth, hasDepth, width](int y, int window, NarrowLanes covered) __attribute__((always_inline)) {
+    rasterizeNarrowRows(t, region, width, [&, depth, hasDepth, width](int y, int window, NarrowLanes covered) {
       const size_t rowStart = size_t(y) * size_t(width);
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
       const Block rowBlock = block;  // a copy, as in the span rows below

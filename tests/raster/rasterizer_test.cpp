@@ -32,6 +32,17 @@ std::vector<ClipVertex> reversed(std::vector<ClipVertex> triangles) {
   return triangles;
 }
 
+// xorshift64: the random tests' vertices, the same on every platform.
+struct XorShift {
+  uint64_t state;
+  uint64_t operator()() {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return state;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("a rectangle with corners on pixel centres covers the centres on its left and top edges",
@@ -273,13 +284,7 @@ TEST_CASE("row spans cover exactly the pixels whose three edge functions pass, f
   // per row by division; slivers, huge triangles reaching far outside the region and edges through
   // pixel centres (coordinates on the 1/256 grid at half-pixels) are all in the mix.
   const Rect region{3, 2, 61, 57};
-  uint64_t state = 0x9E3779B97F4A7C15ull;
-  auto next = [&]() {
-    state ^= state << 13;
-    state ^= state >> 7;
-    state ^= state << 17;
-    return state;
-  };
+  XorShift next{0x9E3779B97F4A7C15ull};
   auto coordinate = [&](int kind) -> int64_t {
     const int64_t r = int64_t(next() % 100000);
     switch (kind) {
@@ -568,12 +573,11 @@ TEST_CASE("row spans cut into bands of rows cover what the edge functions say, a
   // pixel centre. (Starting the upper edge a row early or late, or from the walk's first row,
   // fails here.)
   const Rect region{0, 0, 40, 40};
-  uint64_t state = 0xD1B54A32D192ED03ull;
-  auto next = [&]() {
-    state ^= state << 13;
-    state ^= state >> 7;
-    state ^= state << 17;
-    return state;
+  XorShift next{0xD1B54A32D192ED03ull};
+  // Two pixels either side of the region: on a pixel centre, or anywhere on the subpixel grid.
+  auto coordinate = [&](bool centre) {
+    const int64_t at = centre ? int64_t(next() % 44) * kSubpixelOne + kSubpixelHalf : int64_t(next() % (44 * kSubpixelOne));
+    return at - 2 * kSubpixelOne;
   };
   RenderState rs;
   const DepthCodec codec;
@@ -582,8 +586,8 @@ TEST_CASE("row spans cut into bands of rows cover what the edge functions say, a
     WindowVertex v[3];
     for (WindowVertex& w : v) {
       const bool centre = next() % 2 == 0;
-      w.x = centre ? int64_t(next() % 44) * kSubpixelOne + kSubpixelHalf - 2 * kSubpixelOne : int64_t(next() % (44 * kSubpixelOne)) - 2 * kSubpixelOne;
-      w.y = centre ? int64_t(next() % 44) * kSubpixelOne + kSubpixelHalf - 2 * kSubpixelOne : int64_t(next() % (44 * kSubpixelOne)) - 2 * kSubpixelOne;
+      w.x = coordinate(centre);
+      w.y = coordinate(centre);
       w.fx = double(w.x) / kSubpixelOne;
       w.fy = double(w.y) / kSubpixelOne;
     }
