@@ -227,7 +227,7 @@ void rowsAroundMiddle(const TriangleSetup& t, int x0, int y0, int y1, int64_t wi
   EdgeLimit one, pair;
   startLimit(one, t, single, row[single]);
   auto run = [&](int from, int to) {
-    if (PairOnRight) spanRowsOfTwo<WithEdges>(t, x0, from, to, width, row, one, pair, sink);
+    if constexpr (PairOnRight) spanRowsOfTwo<WithEdges>(t, x0, from, to, width, row, one, pair, sink);
     else spanRowsOfTwo<WithEdges>(t, x0, from, to, width, row, pair, one, sink);
   };
   int y = y0;
