@@ -167,9 +167,15 @@ FragmentProcessor::SpanLoop FragmentProcessor::chooseSpanLoop() const {
 }
 
 void FragmentProcessor::processSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]) {
+  queueSpan(t, y, xl, xr, e);
+  shadeWaiting();
+}
+
+void FragmentProcessor::queueSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]) {
   if (watch_ && watch_->observer && y == watch_->y && watch_->x >= xl && watch_->x <= xr) [[unlikely]] {
     const int wx = watch_->x;
     if (wx > xl) runSpan(t, y, xl, wx - 1, e);
+    shadeWaiting();  // the pixel history sees the rest of the triangle's writes up to here
     int64_t ew[3];
     for (int i = 0; i < 3; ++i) ew[i] = e[i] + t.stepX[i] * (wx - xl);
     processImpl<true>(t, wx, y, ew[0], ew[1], ew[2]);
@@ -415,7 +421,8 @@ void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& regi
     if (spanLoop_ == SpanLoop::DepthOnly) return depthTriangle(t, region);
     if (spanLoop_ == SpanLoop::ConstantColor) return constantColorTriangle(t, region);
   }
-  rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { processSpan(t, y, xl, xr, e); });
+  rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { queueSpan(t, y, xl, xr, e); });
+  shadeWaiting();
 }
 
 namespace {
@@ -675,39 +682,14 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
   stats_.colorWrites += fragments - failed;
 }
 
-// processImpl<false> for a chunk: every test and write per fragment in GL order; the fragments
-// that reach colour are shaded afterwards, together, and written by writeColors.
-void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl,
-                                     const int64_t e[3]) {
-  const size_t at = fb_.index(x, y);
-  int survivors[kChunk];
-  const int survived = testChunk(t, at, n, codes, survivors);
-  if (survived == 0 || !writesColor_) return;
-  stats_.colorWrites += uint64_t(survived);
-  glm::vec4* color = fb_.color().data() + at;
-  if (constantColor_) {
-    writeColors(color, survivors, survived, nullptr);
-    return;
-  }
-  // Blending reads the colour buffer, which is far larger than the caches: ask for the survivors'
-  // lines now, and shading hides the wait for them (a light pass of the room: 8 % of its frame).
-  if (state_.blend.enabled) {
-    const char* first = reinterpret_cast<const char*>(color + survivors[0]);
-    const char* last = reinterpret_cast<const char*>(color + survivors[survived - 1] + 1);
-    for (const char* line = first; line < last; line += 64) __builtin_prefetch(line, 1);
-  }
-  // Varyings at each survivor, column by column, then one call to the shader for all of them.
-  // Per survivor the arithmetic is interpolateVaryings': the same bits.
-  int xs[kChunk];
-  double depths[kChunk], b0[kChunk], b1[kChunk], b2[kChunk], inv[kChunk];
-  double varyings[kMaxVaryings][kChunk];
-  for (int k = 0; k < survived; ++k) {
-    xs[k] = x + survivors[k];
-    depths[k] = fb_.depthCodec().decode(codes[survivors[k]]);
-  }
-  // The weights need double(E) of the exact integer edge values. Where every value in the chunk
-  // is below 2^52 in magnitude, E = E_start + stepX * i is exact in double arithmetic, which
-  // vectorises; otherwise it is formed in 64-bit integers first.
+namespace {
+
+// The perspective weights of a chunk's survivors, b_i = E_i / w_i at each (interpolateVaryings'
+// arithmetic: the same bits). The weights need double(E) of the exact integer edge values. Where
+// every value in the chunk is below 2^52 in magnitude, E = E_start + stepX * i is exact in double
+// arithmetic, which vectorises; otherwise it is formed in 64-bit integers first.
+void chunkWeights(const TriangleSetup& t, const int64_t e[3], int x, int xl, int n, const int* survivors, int survived,
+                  double* b0, double* b1, double* b2) {
   int64_t start[3];
   bool smallValues = true;
   for (int j = 0; j < 3; ++j) {
@@ -733,23 +715,93 @@ void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n
       b2[k] = double(start[2] + t.stepX[2] * i) * t.v[2].invW;
     }
   }
-  for (int k = 0; k < survived; ++k) inv[k] = 1.0 / (b0[k] + b1[k] + b2[k]);
+}
+
+// Chunks with at least this many survivors are shaded at once; fewer wait for the triangle's next
+// ones (FragmentProcessor::Waiting). Copying a full chunk into the waiting batch cost the room's
+// long spans 2 % of their frame's instructions and gained them nothing.
+constexpr int kShadeAtOnce = 32;
+
+}  // namespace
+
+// processImpl<false> for a chunk: every test and write per fragment in GL order; the fragments
+// that reach colour are shaded together and written by writeColors — at once where the chunk has
+// many, otherwise after they have waited for the triangle's next ones (shadeWaiting).
+void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl,
+                                     const int64_t e[3]) {
+  const size_t at = fb_.index(x, y);
+  int survivors[kChunk];
+  const int survived = testChunk(t, at, n, codes, survivors);
+  if (survived == 0 || !writesColor_) return;
+  stats_.colorWrites += uint64_t(survived);
+  glm::vec4* color = fb_.color().data() + at;
+  if (constantColor_) {
+    writeColors(color, survivors, survived, nullptr);
+    return;
+  }
+  // Blending reads the colour buffer, which is far larger than the caches: ask for the survivors'
+  // lines now, and shading hides the wait for them (a light pass of the room: 8 % of its frame).
+  if (state_.blend.enabled) {
+    const char* first = reinterpret_cast<const char*>(color + survivors[0]);
+    const char* last = reinterpret_cast<const char*>(color + survivors[survived - 1] + 1);
+    for (const char* line = first; line < last; line += 64) __builtin_prefetch(line, 1);
+  }
+  if (survived >= kShadeAtOnce) {
+    Shading now;
+    now.count = survived;
+    for (int k = 0; k < survived; ++k) {
+      now.x[k] = x + survivors[k];
+      now.y[k] = y;
+      now.depth[k] = fb_.depthCodec().decode(codes[survivors[k]]);
+    }
+    chunkWeights(t, e, x, xl, n, survivors, survived, now.b0, now.b1, now.b2);
+    shadeAndWrite(t, now, color, survivors);
+    return;
+  }
+  if (waiting_.count + survived > kMaxBatch) shadeWaiting();
+  Waiting& w = waiting_;
+  w.triangle = &t;
+  const int from = w.count;
+  for (int k = 0; k < survived; ++k) {
+    w.at[from + k] = at + size_t(survivors[k]);
+    w.x[from + k] = x + survivors[k];
+    w.y[from + k] = y;
+    w.depth[from + k] = fb_.depthCodec().decode(codes[survivors[k]]);
+  }
+  chunkWeights(t, e, x, xl, n, survivors, survived, w.b0 + from, w.b1 + from, w.b2 + from);
+  w.count += survived;
+}
+
+void FragmentProcessor::shadeWaiting() {
+  if (waiting_.count == 0) return;
+  shadeAndWrite(*waiting_.triangle, waiting_, fb_.color().data(), waiting_.at);
+  waiting_.count = 0;
+}
+
+// Varyings at each fragment, column by column (interpolateVaryings' arithmetic), then one call to
+// the shader for all of them, then the writes: fragment k's colour goes to color[offsets[k]].
+template <class Offset>
+void FragmentProcessor::shadeAndWrite(const TriangleSetup& t, const Shading& f, glm::vec4* color, const Offset* offsets) {
+  const int count = f.count;
+  double inv[kMaxBatch];
+  double varyings[kMaxVaryings][kMaxBatch];
+  for (int k = 0; k < count; ++k) inv[k] = 1.0 / (f.b0[k] + f.b1[k] + f.b2[k]);
   FragmentBatch batch;
-  batch.count = survived;
-  batch.y = y;
+  batch.count = count;
   batch.facing = t.facing;
-  batch.x = xs;
-  batch.depth = depths;
+  batch.x = f.x;
+  batch.y = f.y;
+  batch.depth = f.depth;
   for (int j = 0; j < varyingCount_; ++j) {
     const double a0 = t.v[0].source->varyings[size_t(j)], a1 = t.v[1].source->varyings[size_t(j)],
                  a2 = t.v[2].source->varyings[size_t(j)];
     double* out = varyings[j];
-    for (int k = 0; k < survived; ++k) out[k] = (b0[k] * a0 + b1[k] * a1 + b2[k] * a2) * inv[k];
+    for (int k = 0; k < count; ++k) out[k] = (f.b0[k] * a0 + f.b1[k] * a1 + f.b2[k] * a2) * inv[k];
     batch.varyings[j] = out;
   }
-  glm::dvec4 shaded[kChunk];
+  glm::dvec4 shaded[kMaxBatch];
   shader_->shadeBatch(batch, shaded);
-  writeColors(color, survivors, survived, shaded);
+  writeColors(color, offsets, count, shaded);
 }
 
 namespace {
@@ -910,7 +962,8 @@ int FragmentProcessor::testChunk(const TriangleSetup& t, size_t at, int n, const
 // cases every frame has — no blending with all channels written, and ONE/ONE (the lit passes'
 // sum) — skip the general blend's per-channel factor switches (x * 1.0 is x exactly, and
 // 0 * x + s is s, so they give the same bits).
-void FragmentProcessor::writeColors(glm::vec4* color, const int* survivors, int count, const glm::dvec4* shaded) const {
+template <class Offset>
+void FragmentProcessor::writeColors(glm::vec4* color, const Offset* survivors, int count, const glm::dvec4* shaded) const {
   const BlendState& b = state_.blend;
   const bool allChannels = state_.colorMask[0] && state_.colorMask[1] && state_.colorMask[2] && state_.colorMask[3];
   auto source = [&](int k) -> const glm::dvec4& { return shaded ? shaded[k] : *constantColor_; };

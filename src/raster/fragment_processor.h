@@ -8,9 +8,10 @@
 // DECR_WRAP), depth only (shadow maps) and one constant colour (the ambient pass) walk each
 // triangle's rows straight to the buffers, eight pixels per step; a row's last pixels are one more
 // step of eight whose lanes outside the span store back what they read. Everything else goes row
-// span by row span in chunks: the depth codes of the chunk first, then the tests, then the
-// surviving fragments shaded together. Each pixel is changed at most once per triangle, so the
-// order inside a row changes no byte. The watched pixel (pixel history)
+// span by row span in chunks: the depth codes of the chunk first, then the tests; the surviving
+// fragments wait, row after row, until a batch of them is full or the triangle ends, and are
+// shaded and written together. Each pixel is changed at most once per triangle, so the order of
+// a triangle's writes changes no byte. The watched pixel (pixel history)
 // always takes the one-fragment path, which records every step; the rest of its triangle takes
 // the chunked path.
 #pragma once
@@ -55,6 +56,8 @@ class FragmentProcessor {
   static_assert(kChunk <= kMaxBatch, "a chunk's survivors are shaded as one batch");
 
   SpanLoop chooseSpanLoop() const;
+  // processSpan without shading what waits (the rows of processTriangle's general path).
+  void queueSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
   void runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
   void depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const;
   void countTriangle(const TriangleSetup& t, const Rect& region);
@@ -63,7 +66,18 @@ class FragmentProcessor {
   void generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl, const int64_t e[3]);
   int testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors);
   int filterChunk(const StencilFaceState& face, size_t at, int n, const uint32_t* codes, int* survivors);
-  void writeColors(glm::vec4* color, const int* survivors, int count, const glm::dvec4* shaded) const;
+  // Fragments of one triangle to shade together: pixels, depths and perspective weights.
+  struct Shading {
+    int count = 0;
+    int x[kMaxBatch], y[kMaxBatch];
+    double depth[kMaxBatch], b0[kMaxBatch], b1[kMaxBatch], b2[kMaxBatch];
+  };
+  template <class Offset>
+  void shadeAndWrite(const TriangleSetup& t, const Shading& f, glm::vec4* color, const Offset* offsets);
+  // Shades the waiting survivors as one batch and writes their colours.
+  void shadeWaiting();
+  template <class Offset>
+  void writeColors(glm::vec4* color, const Offset* offsets, int count, const glm::dvec4* shaded) const;
 
   // One body for both paths; the watched one also records a FragmentEvent (pixel history).
   template <bool Watched>
@@ -82,6 +96,17 @@ class FragmentProcessor {
   double depthLo_, depthHi_;
   SpanLoop spanLoop_;
   const glm::dvec4* constantColor_ = nullptr;  // the shader's colour when it has only one
+
+  // The surviving fragments of the current triangle's chunks that wait to be shaded: a chunk of a
+  // row span holds about 15 of them in a frame of small triangles (the outdoor scene's camera
+  // pass), where shading, lookups and writes cost nearly as much per call as per fragment. Their
+  // weights are the chunk's (generalChunk), their order the rows', and they are shaded before the
+  // triangle's rows end (shadeWaiting).
+  struct Waiting : Shading {
+    const TriangleSetup* triangle = nullptr;
+    size_t at[kMaxBatch];  // buffer index
+  };
+  Waiting waiting_;
 };
 
 }  // namespace shadowref

@@ -9,7 +9,7 @@ void FragmentShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) con
     for (int j = 0; j < count; ++j) varyings[j] = batch.varyings[j][k];
     FragmentInput in;
     in.x = batch.x[k];
-    in.y = batch.y;
+    in.y = batch.y[k];
     in.depth = batch.depth[k];
     in.facing = batch.facing;
     in.varyings = varyings;

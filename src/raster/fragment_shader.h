@@ -16,14 +16,14 @@ struct FragmentInput {
   const double* varyings = nullptr;  // perspective-correct, varyingCount() of them
 };
 
-// Fragments of one row span of one triangle, shaded together: column by column (structure of
-// arrays), so a shader can run its arithmetic over all of them in vector registers.
+// Fragments of one triangle, shaded together: column by column (structure of arrays), so a
+// shader can run its arithmetic over all of them in vector registers.
 inline constexpr int kMaxBatch = 64;
 struct FragmentBatch {
   int count = 0;
-  int y = 0;
   Facing facing = FrontFacing;
-  const int* x = nullptr;           // x[k]: the column of fragment k
+  const int* x = nullptr;           // x[k], y[k]: the pixel of fragment k
+  const int* y = nullptr;
   const double* depth = nullptr;    // depth[k]
   const double* varyings[kMaxVaryings]{};  // varyings[j][k]: varying j of fragment k
 };

@@ -101,6 +101,17 @@ std::vector<ClipVertex> randomTriangles(TestRandom& r, const Viewport& vp, int c
   return out;
 }
 
+// A colour from the pixel and one varying, through the default batch form
+// (FragmentShader::shadeBatch): fragments shaded together across the rows of a triangle must each
+// keep their own pixel.
+class PixelShader final : public FragmentShader {
+ public:
+  int varyingCount() const override { return 1; }
+  glm::dvec4 shade(const FragmentInput& in) const override {
+    return {double(in.x % 7) / 7.0, double(in.y % 5) / 5.0, in.varyings[0], 1.0};
+  }
+};
+
 Drawn drawWith(bool reference, int width, int height, DepthFormat format, const std::vector<RenderState>& states,
                const std::vector<std::vector<ClipVertex>>& batches, int threads) {
   Renderer::useReferencePath(reference);
@@ -109,8 +120,10 @@ Drawn drawWith(bool reference, int width, int height, DepthFormat format, const 
   Renderer::useReferencePath(false);
   const ColorVaryingShader varying;
   const ConstantColorShader constant({0.3, 0.6, 0.9, 0.5});
+  const PixelShader pixel;
+  const FragmentShader* const shaders[] = {nullptr, &varying, &constant, &pixel};
   for (size_t i = 0; i < states.size(); ++i) {
-    const FragmentShader* shader = i % 3 == 0 ? nullptr : i % 3 == 1 ? static_cast<const FragmentShader*>(&varying) : &constant;
+    const FragmentShader* shader = shaders[i % 4];
     draw(renderer, states[i], batches[i], shader);
   }
   d.stats = renderer.stats();
