@@ -558,20 +558,21 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
       // Copies for the row: stores through the buffers may alias anything in memory, so values
       // read through the closures would be read again after every store.
       const uint32_t* const stored = depth + rowStart;
+      const double* const rowSlopes = slopes;  // (the map pass read it from the closure every step)
       const Block rowBlock = block;
       const Single rowSingle = single;
       v8u rowPassed8{};  // in a register through the row (a passing lane is -1); the triangle's in memory
       int x = xl;
-      if (slopes) {
+      if (rowSlopes) {
         for (; x + 8 <= xr + 1; x += 8)
-          rowPassed8 -= depthStep<F, true>(stored, hasDepth, rowStart, x, row.codes8(slopes + x), ~v8u{}, rowBlock);
+          rowPassed8 -= depthStep<F, true>(stored, hasDepth, rowStart, x, row.codes8(rowSlopes + x), ~v8u{}, rowBlock);
       } else {
         for (auto centres = row.centres(x); x + 8 <= xr + 1; x += 8, centres = row.nextStep(centres))
           rowPassed8 -= depthStep<F, true>(stored, hasDepth, rowStart, x, row.codes8(centres), ~v8u{}, rowBlock);
       }
       if (x <= xr && width >= 8) {
         const int first = std::min(x, width - 8);
-        const v8u codes = slopes ? row.codes8(slopes + first) : row.codes8(first);
+        const v8u codes = rowSlopes ? row.codes8(rowSlopes + first) : row.codes8(first);
         rowPassed8 -= depthStep<F, false>(stored, hasDepth, rowStart, first, codes, liveLanes(first, x, xr), rowBlock);
       } else {
         for (; x <= xr; ++x) {
