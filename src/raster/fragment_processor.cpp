@@ -959,12 +959,12 @@ int FragmentProcessor::testChunk(const TriangleSetup& t, size_t at, int n, const
   return survived;
 }
 
-// blend() and writeColor() for the survivors; `shaded` is nullptr for a constant colour. The two
-// cases every frame has — no blending with all channels written, and ONE/ONE (the lit passes'
-// sum) — skip the general blend's per-channel factor switches (x * 1.0 is x exactly, and
-// 0 * x + s is s, so they give the same bits).
+// blend() and writeColor() for each fragment k, at color[offsets[k]]; `shaded` is nullptr for a
+// constant colour. The two cases every frame has — no blending with all channels written, and
+// ONE/ONE (the lit passes' sum) — skip the general blend's per-channel factor switches (x * 1.0
+// is x exactly, and 0 * x + s is s, so they give the same bits).
 template <class Offset>
-void FragmentProcessor::writeColors(glm::vec4* color, const Offset* survivors, int count, const glm::dvec4* shaded) const {
+void FragmentProcessor::writeColors(glm::vec4* color, const Offset* offsets, int count, const glm::dvec4* shaded) const {
   const BlendState& b = state_.blend;
   const bool allChannels = state_.colorMask[0] && state_.colorMask[1] && state_.colorMask[2] && state_.colorMask[3];
   auto source = [&](int k) -> const glm::dvec4& { return shaded ? shaded[k] : *constantColor_; };
@@ -982,15 +982,15 @@ void FragmentProcessor::writeColors(glm::vec4* color, const Offset* survivors, i
   if (allChannels && !b.enabled) {
     if (!shaded) {
       const glm::vec4 value = writeColor(glm::vec4(0.0f), *constantColor_, state_.colorMask);
-      for (int k = 0; k < count; ++k) color[survivors[k]] = value;
+      for (int k = 0; k < count; ++k) color[offsets[k]] = value;
       return;
     }
-    for (int k = 0; k < count; ++k) store(color[survivors[k]], clamped(load(shaded[k])));
+    for (int k = 0; k < count; ++k) store(color[offsets[k]], clamped(load(shaded[k])));
     return;
   }
   if (allChannels && b.enabled && b.src == BlendFactor::One && b.dst == BlendFactor::One) {
     for (int k = 0; k < count; ++k) {
-      glm::vec4& dst = color[survivors[k]];
+      glm::vec4& dst = color[offsets[k]];
       v4f stored;
       std::memcpy(&stored, &dst, sizeof stored);
       store(dst, clamped(clamped(load(source(k))) + __builtin_convertvector(stored, v4d)));
@@ -998,7 +998,7 @@ void FragmentProcessor::writeColors(glm::vec4* color, const Offset* survivors, i
     return;
   }
   for (int k = 0; k < count; ++k) {
-    glm::vec4& dst = color[survivors[k]];
+    glm::vec4& dst = color[offsets[k]];
     dst = writeColor(dst, blend(b, source(k), glm::dvec4(dst)), state_.colorMask);
   }
 }

@@ -98,8 +98,8 @@ class FragmentProcessor {
   const glm::dvec4* constantColor_ = nullptr;  // the shader's colour when it has only one
 
   // The surviving fragments of the current triangle's chunks that wait to be shaded: a chunk of a
-  // row span holds about 15 of them in a frame of small triangles (the outdoor scene's camera
-  // pass), where shading, lookups and writes cost nearly as much per call as per fragment. Their
+  // row span holds about 15 of them on average in a frame of small triangles (the outdoor scene's
+  // camera pass), where shading, lookups and writes cost nearly as much per call as per fragment. Their
   // weights are the chunk's (generalChunk), their order the rows', and they are shaded before the
   // triangle's rows end (shadeWaiting).
   struct Waiting : Shading {
