@@ -747,30 +747,27 @@ void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n
     const char* last = reinterpret_cast<const char*>(color + survivors[survived - 1] + 1);
     for (const char* line = first; line < last; line += 64) __builtin_prefetch(line, 1);
   }
+  // The survivors' pixels, depths and weights, from entry `from` of f on.
+  auto add = [&](Shading& f, int from) {
+    for (int k = 0; k < survived; ++k) {
+      f.x[from + k] = x + survivors[k];
+      f.y[from + k] = y;
+      f.depth[from + k] = fb_.depthCodec().decode(codes[survivors[k]]);
+    }
+    chunkWeights(t, e, x, xl, n, survivors, survived, f.b0 + from, f.b1 + from, f.b2 + from);
+    f.count = from + survived;
+  };
   if (survived >= kShadeAtOnce) {
     Shading now;
-    now.count = survived;
-    for (int k = 0; k < survived; ++k) {
-      now.x[k] = x + survivors[k];
-      now.y[k] = y;
-      now.depth[k] = fb_.depthCodec().decode(codes[survivors[k]]);
-    }
-    chunkWeights(t, e, x, xl, n, survivors, survived, now.b0, now.b1, now.b2);
+    add(now, 0);
     shadeAndWrite(t, now, color, survivors);
     return;
   }
   if (waiting_.count + survived > kMaxBatch) shadeWaiting();
   Waiting& w = waiting_;
   w.triangle = &t;
-  const int from = w.count;
-  for (int k = 0; k < survived; ++k) {
-    w.at[from + k] = at + size_t(survivors[k]);
-    w.x[from + k] = x + survivors[k];
-    w.y[from + k] = y;
-    w.depth[from + k] = fb_.depthCodec().decode(codes[survivors[k]]);
-  }
-  chunkWeights(t, e, x, xl, n, survivors, survived, w.b0 + from, w.b1 + from, w.b2 + from);
-  w.count += survived;
+  for (int k = 0; k < survived; ++k) w.at[w.count + k] = at + size_t(survivors[k]);
+  add(w, w.count);
 }
 
 void FragmentProcessor::shadeWaiting() {
