@@ -20,16 +20,36 @@
 
 namespace shadowref {
 
+namespace {
+
+// Which buffers a state's fragments read and write.
+struct BufferUse {
+  bool writesColor, usesDepth, writesDepth, usesStencil;
+};
+BufferUse bufferUse(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader) {
+  const bool anyColorChannel = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+  BufferUse u;
+  u.writesColor = shader != nullptr && anyColorChannel && fb.hasColor();
+  // GL: with the depth test disabled (or no depth buffer) the test passes and nothing is written.
+  u.usesDepth = state.depthTest && fb.hasDepth();
+  u.writesDepth = u.usesDepth && state.depthWrite;
+  u.usesStencil = state.stencilTest && fb.hasStencil();
+  return u;
+}
+
+bool addsToStencil(const RenderState& state);
+
+}  // namespace
+
 FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
                                      const FragmentShader* shader, RasterStats& stats,
                                      const PixelWatch* watch)
     : fb_(fb), state_(state), shader_(shader), stats_(stats), watch_(watch) {
-  const bool anyColorChannel = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
-  writesColor_ = shader != nullptr && anyColorChannel && fb.hasColor();
-  // GL: with the depth test disabled (or no depth buffer) the test passes and nothing is written.
-  usesDepth_ = state.depthTest && fb.hasDepth();
-  writesDepth_ = usesDepth_ && state.depthWrite;
-  usesStencil_ = state.stencilTest && fb.hasStencil();
+  const BufferUse use = bufferUse(fb, state, shader);
+  writesColor_ = use.writesColor;
+  usesDepth_ = use.usesDepth;
+  writesDepth_ = use.writesDepth;
+  usesStencil_ = use.usesStencil;
   varyingCount_ = shader ? shader->varyingCount() : 0;
   depthLo_ = std::min(state.viewport.nearVal, state.viewport.farVal);
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
@@ -158,13 +178,26 @@ FragmentProcessor::SpanLoop FragmentProcessor::chooseSpanLoop() const {
   if (writesColor_ || writesDepth_ || !usesStencil_) {
     return !writesColor_ && !usesStencil_ ? SpanLoop::DepthOnly : SpanLoop::General;
   }
-  for (const StencilFaceState& s : state_.stencil) {
+  return addsToStencil(state_) ? SpanLoop::StencilCount : SpanLoop::General;
+}
+
+bool FragmentProcessor::onlyAddsToStencil(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader) {
+  const BufferUse use = bufferUse(fb, state, shader);
+  return !use.writesColor && !use.writesDepth && use.usesStencil && addsToStencil(state);
+}
+
+namespace {
+// Whether every fragment's stencil op, for either facing, adds 0, 1 or 255 modulo 256 whatever
+// the stencil holds: the test always passes and every op is KEEP, INCR_WRAP or DECR_WRAP.
+bool addsToStencil(const RenderState& state) {
+  for (const StencilFaceState& s : state.stencil) {
     uint8_t delta;
     if (s.func != CompareFunc::Always || s.writeMask != 0xFF || !wrapDelta(s.dpfail, delta) || !wrapDelta(s.dppass, delta))
-      return SpanLoop::General;
+      return false;
   }
-  return SpanLoop::StencilCount;
+  return true;
 }
+}  // namespace
 
 void FragmentProcessor::processSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]) {
   queueSpan(t, y, xl, xr, e);
@@ -602,7 +635,7 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   uint8_t onPass = 0, onFail = 0;
   wrapDelta(face.dppass, onPass);
   wrapDelta(face.dpfail, onFail);
-  uint8_t* const stencil = fb_.stencil().data();
+  uint8_t* const stencil = countTarget_ ? countTarget_ : fb_.stencil().data();
   uint64_t fragments = 0, failed = 0;
   // The deltas in every lane, made once: the stencil stores are byte stores, which may alias
   // anything, so a delta read from a byte would be read and broadcast again at every step.

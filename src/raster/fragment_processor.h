@@ -50,6 +50,14 @@ class FragmentProcessor {
   // Every pixel of row y from xl to xr (inclusive); e holds the unbiased edge values at (xl, y).
   void processSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
 
+  // Whether fragments drawn in `state` with `shader` do nothing but add 0, 1 or 255 modulo 256 to
+  // the stencil (the shadow volumes' counting: the test always passes, every op KEEP, INCR_WRAP or
+  // DECR_WRAP, no colour or depth written). Such draws give the same bytes in any order.
+  static bool onlyAddsToStencil(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader);
+  // For such a state: add the counts to `stencil` (laid out as the framebuffer's stencil) instead
+  // of the framebuffer's stencil buffer; the depth buffer is still the framebuffer's.
+  void countInto(uint8_t* stencil) { countTarget_ = stencil; }
+
  private:
   enum class SpanLoop : uint8_t { StencilCount, DepthOnly, ConstantColor, General };
   static constexpr int kChunk = 64;
@@ -96,6 +104,7 @@ class FragmentProcessor {
   double depthLo_, depthHi_;
   SpanLoop spanLoop_;
   const glm::dvec4* constantColor_ = nullptr;  // the shader's colour when it has only one
+  uint8_t* countTarget_ = nullptr;  // countInto's buffer; nullptr: the framebuffer's stencil
 
   // The surviving fragments of the current triangle's chunks that wait to be shaded: a chunk of a
   // row span holds about 15 of them on average in a frame of small triangles (the outdoor scene's

@@ -464,12 +464,11 @@ void Renderer::assembleQueued() {
     startWorkspace(ws, groupStart(size_t(g) + 1) - groupStart(size_t(g)));
     for (QueuedPiece& piece : piecesOf(size_t(g))) {
       const QueuedAssembly& q = queued_[piece.draw];
-      // A large indexed draw shares its vertices among many triangles: each is worked out once.
-      ws.corners = nullptr;
-      if (piece.last - piece.first > kAssemblyChunk) {
-        prepareCorners(q.call, q.planes, ws.ownCorners, nullptr, piece.first, piece.last);
-        ws.corners = &ws.ownCorners;
-      }
+      // An indexed draw shares its vertices among its triangles: each is worked out once, where
+      // the piece has more corners than the draw has vertices (prepareCorners decides, as draw()
+      // does on one thread; the city's volume draws are small, and were worked per corner here).
+      prepareCorners(q.call, q.planes, ws.ownCorners, nullptr, piece.first, piece.last);
+      ws.corners = &ws.ownCorners;
       const RasterStats before = ws.stats;
       appendTriangles(q.call, piece.first, piece.last, q.planes, q.varyingCount, ws);
       piece.setupsEnd = ws.setups.size();
@@ -724,6 +723,11 @@ void Renderer::flush() {
   }
   const bool parallel = pool_ && candidates >= kParallelThreshold;
   const int threadBands = parallel ? pool_->threadCount() * kBandsPerThread : 1;
+  if (parallel && countsInAnyOrder(threadBands)) {
+    countByTriangles();
+    clearPending();
+    return;
+  }
   const int maxBands = std::min(std::max(threadBands, cacheBands()), (maxY - minY + 1) / kMinBandRows);
   const int bands = maxBands >= 2 ? splitIntoBands(minY, maxY, maxBands) : 1;
   if (bands == 1) {

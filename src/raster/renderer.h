@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -79,6 +80,9 @@ class Renderer {
   void parallelFor(int count, const std::function<void(int)>& task);
   const RasterStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
+
+  // How many flushes were counted by runs of triangles (countByTriangles) rather than by bands.
+  uint64_t flushesCountedByTriangles() const { return trianglesCountedFlushes_; }
 
   // Reports every fragment at pixel (x, y) to the observer (nullptr to stop).
   void watchPixel(int x, int y, FragmentObserver* observer) {
@@ -183,6 +187,27 @@ class Renderer {
   int cacheBands() const;
   void clearPending();  // forgets every pending draw, its setups and what they point into
   void rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const;
+
+  // A flush of draws that only add to the stencil modulo 256 (the shadow volumes' counting:
+  // FragmentProcessor::onlyAddsToStencil), with clears only before them, gives the same bytes in
+  // any order of its triangles. It is counted by runs of triangles instead of bands of rows: no
+  // triangle is cut between bands, and the threads take the runs as they come; each thread adds
+  // into a stencil of its own, and the stencils are added up at the end (counting_flush.cpp).
+  bool countsInAnyOrder(int bands) const;
+  void countByTriangles();
+  struct CountPiece {
+    size_t draw = 0, first = 0, last = 0;  // setups [first, last) of pending_[draw]
+  };
+  // A task of countByTriangles: its counters and the rows of the draws it counted, on cache lines
+  // of its own.
+  struct alignas(128) CountTask {
+    RasterStats stats;
+    int minY = std::numeric_limits<int>::max(), maxY = -1;
+  };
+  std::vector<CountPiece> countPieces_;
+  std::vector<size_t> countRunFirst_;  // run r: pieces [countRunFirst_[r], countRunFirst_[r + 1])
+  std::vector<CountTask> countTasks_;
+  uint64_t trianglesCountedFlushes_ = 0;
 
   Framebuffer& fb_;
   const uint64_t serial_;  // this renderer among all made in the process (SetupReuse)

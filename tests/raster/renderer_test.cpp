@@ -503,6 +503,103 @@ TEST_CASE("queued draws cut into groups of triangles give the bytes and counts o
 }
 
 // ---------------------------------------------------------------------------------------------
+// A flush that only adds to the stencil (the shadow volumes' counting) is counted by runs of
+// triangles on the threads, each into a stencil of its own, summed at the end.
+
+namespace {
+
+// A depth-writing grid, then in one flush: a stencil clear and `soups` draws of random triangles,
+// unculled, that count INCR_WRAP on front faces and DECR_WRAP on back faces where the depth test
+// passes, and the reverse where it fails, with the grid again twice (at its own depth: every test
+// fails) — 10496 triangles, enough for the runs of eight threads. `frontPass` replaces the front
+// faces' pass op; `clearBetween` clears the stencil halfway through the draws.
+struct CountingRun {
+  Framebuffer fb{160, 128};
+  RasterStats stats;
+  uint64_t flushesByTriangles = 0;
+};
+CountingRun renderCounting(const QueuedScene& q, int threads, StencilOp frontPass = StencilOp::IncrWrap,
+                           bool clearBetween = false) {
+  CountingRun run;
+  Framebuffer& fb = run.fb;
+  RenderState depth = fullViewportState(fb);
+  clearDepth(fb, depth, 1.0);
+  clearStencil(fb, depth, 7);
+  depth.depthTest = true;
+  depth.depthFunc = CompareFunc::Less;
+  RenderState counting = depth;
+  counting.depthWrite = false;
+  counting.stencilTest = true;
+  counting.stencil[FrontFacing].dppass = frontPass;
+  counting.stencil[FrontFacing].dpfail = StencilOp::DecrWrap;
+  counting.stencil[BackFacing].dppass = StencilOp::DecrWrap;
+  counting.stencil[BackFacing].dpfail = StencilOp::IncrWrap;
+  Renderer r(fb, threads);
+  r.draw({.state = &depth, .vertices = q.gridVertices, .indices = q.gridIndices});
+  {
+    const DeferredDraws deferred(r, DeferredDraws::Geometry::Kept);
+    r.clear({.state = counting, .stencil = 0});
+    for (int k = 0; k < 32; ++k) {
+      if (clearBetween && k == 16) r.clear({.state = counting, .stencil = 3});
+      r.draw({.state = &counting, .vertices = k % 2 ? q.soupA : q.soupB, .indices = {}});
+      if (k % 16 == 0) r.draw({.state = &counting, .vertices = q.gridVertices, .indices = q.gridIndices});
+    }
+  }
+  run.stats = r.stats();
+  run.flushesByTriangles = r.flushesCountedByTriangles();
+  return run;
+}
+
+}  // namespace
+
+TEST_CASE("a counting flush gives the bytes and counts of one thread at any thread count", "[raster][threads]") {
+  const QueuedScene q = makeQueuedScene(31, -0.6);  // the grid wholly in front of the near plane
+  const CountingRun one = renderCounting(q, 1);
+  CHECK(one.flushesByTriangles == 0);
+  // Not vacuous: counts above and below the cleared 0 (wrapped to 255 and down), failed depth tests.
+  int positive = 0, negative = 0;
+  for (const uint8_t v : one.fb.stencil()) {
+    positive += v > 0 && v < 128;
+    negative += v >= 128;
+  }
+  CHECK(positive > 500);
+  CHECK(negative > 500);
+  CHECK(one.stats.depthFailed > 10000);
+  CHECK(one.stats.depthFailed < one.stats.fragments);
+
+  Renderer::useReferencePath(true);
+  const CountingRun reference = renderCounting(q, 1);
+  Renderer::useReferencePath(false);
+  CHECK(sameBytes(reference.fb.stencil(), one.fb.stencil()));
+
+  for (int threads : {2, 3, 8}) {
+    INFO(threads << " threads");
+    const CountingRun many = renderCounting(q, threads);
+    CHECK(many.flushesByTriangles == 1);
+    CHECK(sameBytes(one.fb.stencil(), many.fb.stencil()));
+    CHECK(sameBytes(one.fb.depthCodes(), many.fb.depthCodes()));
+    CHECK(many.stats.fragments == one.stats.fragments);
+    CHECK(many.stats.depthFailed == one.stats.depthFailed);
+    CHECK(many.stats.stencilWrites == one.stats.stencilWrites);
+    CHECK(many.stats.trianglesRasterized == one.stats.trianglesRasterized);
+    // A second frame on the same thread takes the kept extra stencils, zeroed by the sum.
+    CHECK(sameBytes(one.fb.stencil(), renderCounting(q, threads).fb.stencil()));
+  }
+}
+
+TEST_CASE("a flush with an op that does not add, or a clear between its draws, goes by bands", "[raster][threads]") {
+  const QueuedScene q = makeQueuedScene(32, -0.6);
+  for (const bool clearBetween : {false, true}) {
+    const StencilOp op = clearBetween ? StencilOp::IncrWrap : StencilOp::Incr;  // INCR saturates
+    INFO((clearBetween ? "a clear between the draws" : "INCR"));
+    const CountingRun one = renderCounting(q, 1, op, clearBetween);
+    const CountingRun two = renderCounting(q, 2, op, clearBetween);
+    CHECK(two.flushesByTriangles == 0);
+    CHECK(sameBytes(one.fb.stencil(), two.fb.stencil()));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
 // Kept setups (SetupReuse): a later pass of the same triangles takes the first pass's setups.
 
 namespace {
