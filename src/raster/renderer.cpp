@@ -723,7 +723,7 @@ void Renderer::flush() {
   }
   const bool parallel = pool_ && candidates >= kParallelThreshold;
   const int threadBands = parallel ? pool_->threadCount() * kBandsPerThread : 1;
-  if (parallel && countsInAnyOrder(threadBands)) {
+  if (parallel && countsInAnyOrder()) {
     countByTriangles();
     clearPending();
     return;

@@ -193,7 +193,7 @@ class Renderer {
   // any order of its triangles. It is counted by runs of triangles instead of bands of rows: no
   // triangle is cut between bands, and the threads take the runs as they come; each thread adds
   // into a stencil of its own, and the stencils are added up at the end (counting_flush.cpp).
-  bool countsInAnyOrder(int bands) const;
+  bool countsInAnyOrder() const;
   void countByTriangles();
   struct CountPiece {
     size_t draw = 0, first = 0, last = 0;  // setups [first, last) of pending_[draw]
