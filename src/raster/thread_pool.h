@@ -2,7 +2,8 @@
 // tasks (bands of rows, chunks of triangles); which thread runs which task varies, but tasks touch
 // disjoint pixels and each runs its triangles in submission order, so the buffers come out
 // byte-identical for any thread count (the llvmpipe idea of STYLE.md: each tile owned by one
-// thread, replayed in order).
+// thread, replayed in order) — or, where the order cannot matter (stencil counts, which only add
+// modulo 256: counting_flush.cpp), each writes a buffer of its own that is summed after.
 //
 // A frame is hundreds of draws, each a few hundred microseconds or less, so waking a sleeping
 // thread per draw (tens of microseconds) would eat the gain. Idle workers therefore spin, yielding
