@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <exception>
 #include <vector>
 
 #include "raster/renderer.h"
@@ -76,14 +75,13 @@ bool Renderer::countsInAnyOrder() const {
   return acrossARow >= double(fb_.width());
 }
 
-void Renderer::countByTriangles() {
-  clearsNow();  // before every draw: the counts start from the cleared stencil
-  // The pending draws' setups cut into runs of about `perRun`, a draw between runs where it is
-  // long (the pumpkins' lantern) and many short ones in one run (the city's 387 volume draws).
+// The pending draws' setups cut into `runs` runs of about the same length, a draw between runs
+// where it is long (the pumpkins' lantern) and many short ones in one run (the city's 387 volume
+// draws): countPieces_, and countRunFirst_ for where each run's pieces start; returns the count.
+int Renderer::cutIntoRuns(size_t runs) {
   size_t total = 0;
   for (const PendingDraw& d : pending_) total += d.count;
-  const int tasks = threads();
-  const size_t runs = std::max<size_t>(1, std::min(total, size_t(tasks) * kRunsPerThread));
+  runs = std::max<size_t>(1, std::min(total, runs));
   const size_t perRun = (total + runs - 1) / runs;
   countPieces_.clear();
   countRunFirst_.assign(1, 0);
@@ -101,7 +99,44 @@ void Renderer::countByTriangles() {
     }
   }
   if (inRun > 0) countRunFirst_.push_back(countPieces_.size());
-  const int runCount = int(countRunFirst_.size()) - 1;
+  return int(countRunFirst_.size()) - 1;
+}
+
+// The extra stencils' rows that were counted into (task k's in extra[k - 1]), added to the
+// framebuffer's and zeroed, in parts of rows on the threads.
+void Renderer::addExtraStencils(std::vector<std::vector<uint8_t>>& extra) {
+  int lo = fb_.height(), hi = -1;
+  for (size_t k = 1; k < countTasks_.size(); ++k) {
+    CountTask& t = countTasks_[k];
+    t.minY = std::max(t.minY, 0);
+    t.maxY = std::min(t.maxY, fb_.height() - 1);
+    if (t.minY > t.maxY) continue;
+    lo = std::min(lo, t.minY);
+    hi = std::max(hi, t.maxY);
+  }
+  if (lo > hi) return;
+  const int width = fb_.width();
+  const int rows = hi - lo + 1;
+  const int parts = int(std::clamp<int64_t>(int64_t(rows) * width / kPixelsPerSumPart, 1, rows));
+  uint8_t* const stencil = fb_.stencil().data();
+  pool_->run(parts, [&](int part) {
+    const int y0 = lo + int(int64_t(rows) * part / parts), y1 = lo + int(int64_t(rows) * (part + 1) / parts);
+    for (size_t k = 1; k < countTasks_.size(); ++k) {
+      const CountTask& t = countTasks_[k];
+      const int from = std::max(y0, t.minY), to = std::min(y1, t.maxY + 1);
+      if (from >= to) continue;
+      uint8_t* const counts = extra[k - 1].data();
+      const size_t first = size_t(from) * size_t(width), last = size_t(to) * size_t(width);
+      for (size_t i = first; i < last; ++i) stencil[i] = uint8_t(stencil[i] + counts[i]);
+      std::fill(counts + first, counts + last, uint8_t(0));
+    }
+  });
+}
+
+void Renderer::countByTriangles() {
+  clearsNow();  // before every draw: the counts start from the cleared stencil
+  const int tasks = threads();
+  const int runCount = cutIntoRuns(size_t(tasks) * kRunsPerThread);
 
   // Task 0 counts into the framebuffer's stencil, task k > 0 into extra stencil k - 1. A thread
   // runs one task at a time, so each stencil has one writer.
@@ -131,34 +166,7 @@ void Renderer::countByTriangles() {
     for (size_t k = 0; k + 1 < size_t(tasks); ++k) std::fill(extra[k].begin(), extra[k].end(), uint8_t(0));
     throw;
   }
-  // The extra stencils' rows that were counted into, added to the framebuffer's and zeroed.
-  int lo = fb_.height(), hi = -1;
-  for (size_t k = 1; k < countTasks_.size(); ++k) {
-    CountTask& t = countTasks_[k];
-    t.minY = std::max(t.minY, 0);
-    t.maxY = std::min(t.maxY, fb_.height() - 1);
-    if (t.minY > t.maxY) continue;
-    lo = std::min(lo, t.minY);
-    hi = std::max(hi, t.maxY);
-  }
-  if (lo <= hi) {
-    const int width = fb_.width();
-    const int rows = hi - lo + 1;
-    const int parts = int(std::clamp<int64_t>(int64_t(rows) * width / kPixelsPerSumPart, 1, rows));
-    uint8_t* const stencil = fb_.stencil().data();
-    pool_->run(parts, [&](int part) {
-      const int y0 = lo + int(int64_t(rows) * part / parts), y1 = lo + int(int64_t(rows) * (part + 1) / parts);
-      for (size_t k = 1; k < countTasks_.size(); ++k) {
-        const CountTask& t = countTasks_[k];
-        const int from = std::max(y0, t.minY), to = std::min(y1, t.maxY + 1);
-        if (from >= to) continue;
-        uint8_t* const counts = extra[k - 1].data();
-        const size_t first = size_t(from) * size_t(width), last = size_t(to) * size_t(width);
-        for (size_t i = first; i < last; ++i) stencil[i] = uint8_t(stencil[i] + counts[i]);
-        std::fill(counts + first, counts + last, uint8_t(0));
-      }
-    });
-  }
+  addExtraStencils(extra);
   for (const CountTask& t : countTasks_) stats_ += t.stats;
   ++trianglesCountedFlushes_;
 }

@@ -195,6 +195,8 @@ class Renderer {
   // into a stencil of its own, and the stencils are added up at the end (counting_flush.cpp).
   bool countsInAnyOrder() const;
   void countByTriangles();
+  int cutIntoRuns(size_t runs);
+  void addExtraStencils(std::vector<std::vector<uint8_t>>& extra);
   struct CountPiece {
     size_t draw = 0, first = 0, last = 0;  // setups [first, last) of pending_[draw]
   };
