@@ -519,7 +519,7 @@ struct CountingRun {
   uint64_t flushesByTriangles = 0;
 };
 CountingRun renderCounting(const QueuedScene& q, int threads, StencilOp frontPass = StencilOp::IncrWrap,
-                           bool clearBetween = false) {
+                           bool clearBetween = false, FragmentObserver* history = nullptr) {
   CountingRun run;
   Framebuffer& fb = run.fb;
   RenderState depth = fullViewportState(fb);
@@ -536,6 +536,7 @@ CountingRun renderCounting(const QueuedScene& q, int threads, StencilOp frontPas
   counting.stencil[BackFacing].dpfail = StencilOp::IncrWrap;
   Renderer r(fb, threads);
   r.draw({.state = &depth, .vertices = q.gridVertices, .indices = q.gridIndices});
+  if (history) r.watchPixel(80, 64, history);
   {
     const DeferredDraws deferred(r, DeferredDraws::Geometry::Kept);
     r.clear({.state = counting, .stencil = 0});
@@ -596,6 +597,22 @@ TEST_CASE("a flush with an op that does not add, or a clear between its draws, g
     const CountingRun two = renderCounting(q, 2, op, clearBetween);
     CHECK(two.flushesByTriangles == 0);
     CHECK(sameBytes(one.fb.stencil(), two.fb.stencil()));
+  }
+}
+
+TEST_CASE("a counting flush the pixel history watches goes by bands and reports its fragments in order",
+          "[raster][threads][history]") {
+  const QueuedScene q = makeQueuedScene(33, -0.6);
+  Recorder one, two;
+  const CountingRun a = renderCounting(q, 1, StencilOp::IncrWrap, false, &one);
+  const CountingRun b = renderCounting(q, 2, StencilOp::IncrWrap, false, &two);
+  CHECK(b.flushesByTriangles == 0);
+  CHECK(sameBytes(a.fb.stencil(), b.fb.stencil()));
+  REQUIRE(one.events.size() > 10);
+  REQUIRE(two.events.size() == one.events.size());
+  for (size_t k = 0; k < one.events.size(); ++k) {
+    CHECK(two.events[k].drawIndex == one.events[k].drawIndex);
+    CHECK(two.events[k].stencilAfter == one.events[k].stencilAfter);
   }
 }
 
