@@ -43,12 +43,12 @@ std::vector<std::vector<uint8_t>>& extraStencils(size_t count, size_t pixels) {
 }  // namespace
 
 bool Renderer::countsInAnyOrder() const {
-  if (referencePath_ || watch_.observer || !fb_.hasStencil()) return false;  // the pixel history sees fragments in order
+  if (referencePath_ || !fb_.hasStencil()) return false;
   for (const PendingClear& c : pendingClears_)
     if (c.beforeDraw != 0) return false;  // a clear between draws would count in the middle
   for (const PendingDraw& d : pending_) {
     if (d.count > 0 && !FragmentProcessor::onlyAddsToStencil(fb_, d.state, d.shader)) return false;
-    if (d.watch.observer) return false;  // drawn while the pixel history watched
+    if (d.watch.observer) return false;  // drawn while the pixel history watched: it sees fragments in order
   }
   if (size_t(threads() - 1) * fb_.pixelCount() > kMaxExtraStencilBytes) return false;
   // Cut into bands, each setup that crosses a band's edge is started again there (about 1200
