@@ -5,8 +5,9 @@
 // Every timed run is a child process (this program with --worker): Mesa picks its driver
 // (GALLIUM_DRIVER) and llvmpipe its thread count (LP_NUM_THREADS) once per process, and a fresh
 // process gives every configuration the same start. Runs alternate between the configurations,
-// round by round in A B C … C B A order, because llvmpipe's timings jump between runs; each run
-// reports the median of its frames, each configuration the median of its runs. The houses and
+// round by round in A B C … C B A order, because llvmpipe's timings jump between runs, and each
+// round measures every scene once, so that a slow stretch of the host is shared out among the
+// scenes; each run reports the median of its frames, each configuration the median of its runs. The houses and
 // lights series run every point once a round (each round from another point on) and fit the
 // fastest run of each point.
 //
@@ -633,17 +634,45 @@ void printPairTable(const PairColumns& p, const std::vector<SceneCase>& cases, c
   }
 }
 
+// Points — the compared scenes, or a series' numbers of houses or lights — measured round by round,
+// each round every point once, and within a point the configurations alternating as in measure(). Round r starts r/rounds of the way along the points
+// and wraps around, so that every point's runs lie about a round apart: a slow stretch of the host
+// (minutes at a time here) then falls on different points in different rounds instead of on every
+// run of the points it meets. (Rounds that went 1 … n, then n … 1, ran the end points twice in a
+// row at each turn: in run AH the 8-house point's fastest of five runs met a slow stretch.)
+std::vector<std::vector<Measured>> measureInRounds(const std::vector<SceneCase>& cases, const std::vector<Config>& configs,
+                                                 const Settings& s) {
+  std::vector<std::vector<Measured>> m(cases.size(), std::vector<Measured>(configs.size()));
+  Settings oneRound = s;
+  oneRound.rounds = 1;
+  const size_t n = cases.size();
+  for (int round = 0; round < s.rounds; ++round) {
+    const size_t start = size_t(round) * n / size_t(s.rounds);
+    for (size_t j = 0; j < n; ++j) {
+      const size_t i = (start + j) % n;
+      const std::vector<Measured> r = measure(cases[i], configs, oneRound, round);
+      for (size_t k = 0; k < configs.size(); ++k) m[i][k].add(r[k]);
+    }
+  }
+  return m;
+}
+
 // The compared scenes' tables; returns every configuration's figures, per scene in comparedConfigs' order.
 std::vector<std::vector<Measured>> compareScenes(const Settings& s, std::ofstream& csv) {
   const std::vector<Config> configs = comparedConfigs();
   const std::vector<SceneCase> cases = comparedScenes();
-  std::vector<std::vector<Measured>> all;
   std::fprintf(stderr, "comparing");
-  for (const SceneCase& c : cases) {
-    all.push_back(measure(c, configs, s));
+  // Round by round, every scene once a round, as the series go: a slow stretch of the host then
+  // meets one or two of each scene's runs rather than most of one scene's. (Measured scene after
+  // scene, all five rounds of a scene within a minute and a half, a stretch of a minute or two
+  // covered the scene it fell on: in run AT the outdoor frame's two-thread runs, 6-10 ms against
+  // 5.9 in AQ.)
+  const std::vector<std::vector<Measured>> all = measureInRounds(cases, configs, s);
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const SceneCase& c = cases[k];
     for (size_t i = 0; i < configs.size(); ++i) {
-      csvRow(csv, "compare", c, configs[i], all.back()[i]);
-      const std::vector<double>& x = all.back()[i].crossCore;
+      csvRow(csv, "compare", c, configs[i], all[k][i]);
+      const std::vector<double>& x = all[k][i].crossCore;
       if (!x.empty())
         csv << "cross-core," << c.label << ',' << c.houses << ',' << c.lights << ',' << configs[i].engineName() << ','
             << configs[i].threads << ',' << x.size() << ',' << median(x) << ',' << *std::min_element(x.begin(), x.end())
@@ -679,29 +708,6 @@ std::vector<std::vector<Measured>> compareScenes(const Settings& s, std::ofstrea
   for (const PairColumns* p : {&perVertex, &perPixel}) printPairTable(*p, cases, all, true);
   std::printf("load average after the runs: %s\n", loadAverage().c_str());
   return all;
-}
-
-// A series' points measured round by round, each round every point once, and within a point the
-// configurations alternating as in measure(). Round r starts r/rounds of the way along the points
-// and wraps around, so that every point's runs lie about a round apart: a slow stretch of the host
-// (minutes at a time here) then falls on different points in different rounds instead of on every
-// run of the points it meets. (Rounds that went 1 … n, then n … 1, ran the end points twice in a
-// row at each turn: in run AH the 8-house point's fastest of five runs met a slow stretch.)
-std::vector<std::vector<Measured>> measureSeries(const std::vector<SceneCase>& cases, const std::vector<Config>& configs,
-                                                 const Settings& s) {
-  std::vector<std::vector<Measured>> m(cases.size(), std::vector<Measured>(configs.size()));
-  Settings oneRound = s;
-  oneRound.rounds = 1;
-  const size_t n = cases.size();
-  for (int round = 0; round < s.rounds; ++round) {
-    const size_t start = size_t(round) * n / size_t(s.rounds);
-    for (size_t j = 0; j < n; ++j) {
-      const size_t i = (start + j) % n;
-      const std::vector<Measured> r = measure(cases[i], configs, oneRound, round);
-      for (size_t k = 0; k < configs.size(); ++k) m[i][k].add(r[k]);
-    }
-  }
-  return m;
 }
 
 // R² of the least-squares lines through shadowref's times, 1 and 2 threads, against houses and lights.
@@ -746,7 +752,7 @@ ScalingFits scaling(const Settings& s, std::ofstream& csv) {
     std::printf("%8s %9s %9s %9s %9s   %3s %9s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "llpp-1t",
                 "", "sr-1t", "sr-2t", "llvm-1t", "llpp-1t");
     std::vector<std::vector<double>> y(configs.size()), yCpu(configs.size());
-    const std::vector<std::vector<Measured>> all = measureSeries(ser.cases, configs, fewer);
+    const std::vector<std::vector<Measured>> all = measureInRounds(ser.cases, configs, fewer);
     for (size_t i = 0; i < ser.cases.size(); ++i) {
       const std::vector<Measured>& m = all[i];
       for (size_t k = 0; k < configs.size(); ++k) {
