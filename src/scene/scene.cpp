@@ -35,7 +35,11 @@ void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, con
     inst.world = world;
     inst.material = node.material;
     inst.worldBounds = transformBounds(inst.mesh->bounds, world);
-    inst.shadowBounds = inst.shadowMesh ? transformBounds(inst.shadowMesh->bounds, world) : Aabb{};
+    // The usual caster is its own shadow mesh: its bounds are the ones just made (the city's
+    // frames flatten 129 instances each).
+    inst.shadowBounds = !inst.shadowMesh                ? Aabb{}
+                        : inst.shadowMesh == inst.mesh ? inst.worldBounds
+                                                       : transformBounds(inst.shadowMesh->bounds, world);
     inst.mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
     out.push_back(std::move(inst));
   }
