@@ -5,11 +5,11 @@
 // Every timed run is a child process (this program with --worker): Mesa picks its driver
 // (GALLIUM_DRIVER) and llvmpipe its thread count (LP_NUM_THREADS) once per process, and a fresh
 // process gives every configuration the same start. Runs alternate between the configurations,
-// round by round in A B C … C B A order, because llvmpipe's timings jump between runs, and each
-// round measures every scene once, so that a slow stretch of the host is shared out among the
-// scenes; each run reports the median of its frames, each configuration the median of its runs. The houses and
-// lights series run every point once a round (each round from another point on) and fit the
-// fastest run of each point.
+// round by round in A B C … C B A order, because llvmpipe's timings jump between runs; each run
+// reports the median of its frames, each configuration the median of its runs. Each round runs
+// every compared scene once, as it runs every point of the houses and lights series (each round
+// from another one on), so that a slow stretch of the host is shared out among them; the series
+// fit the fastest run of each point.
 //
 // Both run twice over, in two like-for-like pairs: Mesa with GL's fixed-function lighting (per
 // vertex) against shadowref with every material switched to Gouraud shading (the same lighting
@@ -634,14 +634,15 @@ void printPairTable(const PairColumns& p, const std::vector<SceneCase>& cases, c
   }
 }
 
-// Points — the compared scenes, or a series' numbers of houses or lights — measured round by round,
-// each round every point once, and within a point the configurations alternating as in measure(). Round r starts r/rounds of the way along the points
-// and wraps around, so that every point's runs lie about a round apart: a slow stretch of the host
-// (minutes at a time here) then falls on different points in different rounds instead of on every
-// run of the points it meets. (Rounds that went 1 … n, then n … 1, ran the end points twice in a
-// row at each turn: in run AH the 8-house point's fastest of five runs met a slow stretch.)
+// Points — the compared scenes, or a series' numbers of houses or lights — measured round by
+// round, each round every point once, and within a point the configurations alternating as in
+// measure(). Round r starts r/rounds of the way along the points and wraps around, so that every
+// point's runs lie about a round apart: a slow stretch of the host (minutes at a time here) then
+// falls on different points in different rounds instead of on every run of the points it meets.
+// (Rounds that went 1 … n, then n … 1, ran the end points twice in a row at each turn: in run AH
+// the 8-house point's fastest of five runs met a slow stretch.)
 std::vector<std::vector<Measured>> measureInRounds(const std::vector<SceneCase>& cases, const std::vector<Config>& configs,
-                                                 const Settings& s) {
+                                                   const Settings& s) {
   std::vector<std::vector<Measured>> m(cases.size(), std::vector<Measured>(configs.size()));
   Settings oneRound = s;
   oneRound.rounds = 1;
