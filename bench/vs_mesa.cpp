@@ -362,24 +362,22 @@ struct Settings {
   std::string imageDir;    // --images DIR: the agreement's frames as PNG
 };
 
-// Rounds of alternating runs: A B C … then … C B A, so slow drift hits every configuration alike.
-// `firstRound` says which way the first round goes (even: A B C …).
-std::vector<Measured> measure(const SceneCase& c, const std::vector<Config>& configs, const Settings& s,
-                              int firstRound = 0) {
+// One round of alternating runs of a point: A B C … in an even round, … C B A in an odd one, so
+// slow drift hits every configuration alike.
+std::vector<Measured> measureRound(const SceneCase& c, const std::vector<Config>& configs, const Settings& s,
+                                   int round) {
   std::vector<Measured> m(configs.size());
-  for (int round = firstRound; round < firstRound + s.rounds; ++round) {
-    for (size_t k = 0; k < configs.size(); ++k) {
-      const size_t i = round % 2 == 0 ? k : configs.size() - 1 - k;
-      const int frames = configs[i].engine == Engine::Softpipe ? std::max(1, s.frames / 3) : s.frames;
-      const Config& cfg = configs[i];
-      if (cfg.engine == Engine::Shadowref && cfg.threads == 2) m[i].crossCore.push_back(crossCoreNs());
-      const RunResult r = runChild(cfg, frames, c);
-      m[i].runMedians.push_back(median(r.frameMs));
-      m[i].cpuRunMedians.push_back(median(r.cpuMs));
-      m[i].renderer = r.renderer;
-    }
-    std::fprintf(stderr, ".");
+  for (size_t k = 0; k < configs.size(); ++k) {
+    const size_t i = round % 2 == 0 ? k : configs.size() - 1 - k;
+    const int frames = configs[i].engine == Engine::Softpipe ? std::max(1, s.frames / 3) : s.frames;
+    const Config& cfg = configs[i];
+    if (cfg.engine == Engine::Shadowref && cfg.threads == 2) m[i].crossCore.push_back(crossCoreNs());
+    const RunResult r = runChild(cfg, frames, c);
+    m[i].runMedians.push_back(median(r.frameMs));
+    m[i].cpuRunMedians.push_back(median(r.cpuMs));
+    m[i].renderer = r.renderer;
   }
+  std::fprintf(stderr, ".");
   return m;
 }
 
@@ -636,22 +634,20 @@ void printPairTable(const PairColumns& p, const std::vector<SceneCase>& cases, c
 
 // Points — the compared scenes, or a series' numbers of houses or lights — measured round by
 // round, each round every point once, and within a point the configurations alternating as in
-// measure(). Round r starts r/rounds of the way along the points and wraps around, so that every
-// point's runs lie about a round apart: a slow stretch of the host (minutes at a time here) then
-// falls on different points in different rounds instead of on every run of the points it meets.
+// measureRound(). Round r starts r/rounds of the way along the points and wraps around, so that
+// every point's runs lie about a round apart: a slow stretch of the host (minutes at a time here)
+// then falls on different points in different rounds instead of on every run of the points it meets.
 // (Rounds that went 1 … n, then n … 1, ran the end points twice in a row at each turn: in run AH
 // the 8-house point's fastest of five runs met a slow stretch.)
 std::vector<std::vector<Measured>> measureInRounds(const std::vector<SceneCase>& cases, const std::vector<Config>& configs,
                                                    const Settings& s) {
   std::vector<std::vector<Measured>> m(cases.size(), std::vector<Measured>(configs.size()));
-  Settings oneRound = s;
-  oneRound.rounds = 1;
   const size_t n = cases.size();
   for (int round = 0; round < s.rounds; ++round) {
     const size_t start = size_t(round) * n / size_t(s.rounds);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = (start + j) % n;
-      const std::vector<Measured> r = measure(cases[i], configs, oneRound, round);
+      const std::vector<Measured> r = measureRound(cases[i], configs, s, round);
       for (size_t k = 0; k < configs.size(); ++k) m[i][k].add(r[k]);
     }
   }
@@ -663,11 +659,8 @@ std::vector<std::vector<Measured>> compareScenes(const Settings& s, std::ofstrea
   const std::vector<Config> configs = comparedConfigs();
   const std::vector<SceneCase> cases = comparedScenes();
   std::fprintf(stderr, "comparing");
-  // Round by round, every scene once a round, as the series go: a slow stretch of the host then
-  // meets one or two of each scene's runs rather than most of one scene's. (Measured scene after
-  // scene, all five rounds of a scene within a minute and a half, a stretch of a minute or two
-  // covered the scene it fell on: in run AT the outdoor frame's two-thread runs, 6-10 ms against
-  // 5.9 in AQ.)
+  // Round by round, as the series go (measured scene after scene, a slow stretch of the host
+  // covered most runs of one scene: run AT's outdoor frame at two threads, 6-10 ms against 5.9).
   const std::vector<std::vector<Measured>> all = measureInRounds(cases, configs, s);
   for (size_t k = 0; k < cases.size(); ++k) {
     const SceneCase& c = cases[k];
