@@ -1,6 +1,7 @@
 #include "shadow/scene_passes.h"
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <numbers>
 
@@ -124,18 +125,62 @@ bool withinRange(const Light& light, const Aabb& b) {
 
 namespace {
 
-// What a pass's deferred draws need alive until they are rasterized (DeferredDraws).
-struct PassResources {
-  std::vector<std::unique_ptr<FragmentShader>> shaders;
+// Instances of one material within range of the same lights: one lighting setup and one shader
+// for all of them. The city's 129 instances have a handful of materials, so a pass makes a handful
+// of setups and shaders instead of one of each — and their allocations, on the calling thread
+// while the other threads wait — a draw. A shader is a function of its setup alone: the same
+// bytes.
+struct LightingGroup {
+  size_t material = 0;
+  std::vector<uint8_t> reached;  // per light of the pass: whether it is within range
+  LightingSetup lighting;
+  std::unique_ptr<FragmentShader> shader;
 };
 
-// An instance of a pass: how it is lit, and for a Gouraud material its shaded vertices
+// An instance of a pass: its group, and for a Gouraud material its shaded vertices
 // (PreparedInstance::shadedVertices).
 struct LitInstance {
   const PreparedInstance* prepared = nullptr;
-  LightingSetup lighting;
+  size_t group = 0;
   ClipVertexBuffer* shadedVertices = nullptr;
 };
+
+// The shader of a group: its setup's constant ambient colour without lights, Gouraud's
+// interpolation for a Gouraud material, per-pixel Phong otherwise.
+std::unique_ptr<FragmentShader> groupShader(const LightingSetup& lighting, bool gouraud) {
+  if (lighting.lights.empty()) {
+    // Ambient only: shadePoint returns the ambient term for every point, so the rasterizer is told
+    // it is a constant. Per pixel these are the same bits; for Gouraud every vertex has that
+    // colour, and the constant is the exact value its interpolation would round (no interpolation).
+    return std::make_unique<ConstantColorShader>(glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0));
+  }
+  // Gouraud: each vertex lit (drawLit, on the threads), the colour interpolated.
+  if (gouraud) return std::make_unique<GouraudShader>();
+  return std::make_unique<PerPixelLightingShader>(lighting);
+}
+
+// The group of instance `p` among `groups`, made if it is the first of its kind; `reached` is
+// scratch of one entry per light.
+size_t groupOf(const PreparedInstance& p, const Scene& scene, const SceneView& view, std::span<const Light> lights,
+               bool includeAmbient, std::vector<uint8_t>& reached, std::vector<LightingGroup>& groups) {
+  const size_t material = size_t(p.instance->material);
+  for (size_t l = 0; l < lights.size(); ++l) reached[l] = withinRange(lights[l], p.instance->worldBounds);
+  for (size_t g = 0; g < groups.size(); ++g)
+    if (groups[g].material == material && groups[g].reached == reached) return g;
+  LightingGroup& group = groups.emplace_back();
+  group.material = material;
+  group.reached = reached;
+  const Material& m = scene.materials.at(material);
+  LightingSetup& lighting = group.lighting;
+  lighting.material = toPhongMaterial(m);
+  lighting.globalAmbient = scene.ambient;
+  lighting.includeAmbient = includeAmbient;
+  lighting.eye = view.eye;
+  for (size_t l = 0; l < lights.size(); ++l)
+    if (reached[l]) lighting.lights.push_back(toPhongLight(lights[l]));
+  if (includeAmbient || !lighting.lights.empty()) group.shader = groupShader(lighting, m.shading == ShadingModel::Gouraud);
+  return groups.size() - 1;
+}
 
 // The vertices of `p` with each one's Gouraud colour in the colour varyings (gouraudVertexColor);
 // without lights, the vertices as they are (the pass draws one constant colour).
@@ -151,10 +196,9 @@ void lightVertices(const PreparedInstance& p, const LightingSetup& lighting, Cli
   }
 }
 
-void drawInstance(Renderer& renderer, const RenderState& state, const LitInstance& item, DrawKind kind,
-                  PassResources& keep) {
+void drawInstance(Renderer& renderer, const RenderState& state, const LitInstance& item, const FragmentShader& shader,
+                  DrawKind kind) {
   const PreparedInstance& p = *item.prepared;
-  const LightingSetup& lighting = item.lighting;
   RenderState mirrored;
   DrawCall call;
   call.state = &stateFor(state, *p.instance, mirrored);
@@ -164,19 +208,7 @@ void drawInstance(Renderer& renderer, const RenderState& state, const LitInstanc
   // same array, whose setups the next pass takes (SetupReuse).
   call.vertices = item.shadedVertices ? std::span<const ClipVertex>(*item.shadedVertices) : std::span<const ClipVertex>(p.vertices);
   call.reuse = &p.setups;
-  if (lighting.lights.empty()) {
-    // Ambient only: shadePoint returns the ambient term for every point, so the rasterizer is told
-    // it is a constant. Per pixel these are the same bits; for Gouraud every vertex has that
-    // colour, and the constant is the exact value its interpolation would round (no interpolation).
-    keep.shaders.push_back(std::make_unique<ConstantColorShader>(
-        glm::dvec4(shadePoint(lighting, glm::dvec3(0.0), glm::dvec3(0.0)), 1.0)));
-  } else if (!item.shadedVertices) {
-    keep.shaders.push_back(std::make_unique<PerPixelLightingShader>(lighting));
-  } else {
-    // Gouraud: each vertex lit (drawLit, on the threads), the colour interpolated.
-    keep.shaders.push_back(std::make_unique<GouraudShader>());
-  }
-  call.shader = keep.shaders.back().get();
+  call.shader = &shader;
   renderer.draw(call);
 }
 
@@ -185,35 +217,30 @@ void drawInstance(Renderer& renderer, const RenderState& state, const LitInstanc
 void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
              std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
              DrawKind kind) {
-  PassResources keep;  // declared first: outlives the deferred draws, which end first
+  std::vector<LightingGroup> groups;  // declared first: its shaders outlive the deferred draws
   std::vector<LitInstance> items;
+  items.reserve(prepared.size());
+  std::vector<uint8_t> reached(lights.size());
   for (const PreparedInstance& p : prepared) {
     LitInstance item;
     item.prepared = &p;
-    const Material& material = scene.materials.at(size_t(p.instance->material));
-    LightingSetup& lighting = item.lighting;
-    lighting.material = toPhongMaterial(material);
-    lighting.globalAmbient = scene.ambient;
-    lighting.includeAmbient = includeAmbient;
-    lighting.eye = view.eye;
-    for (const Light& light : lights)
-      if (withinRange(light, p.instance->worldBounds)) lighting.lights.push_back(toPhongLight(light));
-    if (!includeAmbient && lighting.lights.empty()) continue;
-    if (material.shading == ShadingModel::Gouraud) {
+    item.group = groupOf(p, scene, view, lights, includeAmbient, reached, groups);
+    if (!groups[item.group].shader) continue;  // no light reaches it, and no ambient term
+    if (scene.materials.at(groups[item.group].material).shading == ShadingModel::Gouraud) {
       item.shadedVertices = &p.shadedVertices;
       item.shadedVertices->resize(p.vertices.size());  // constructed by lightVertices
     }
-    items.push_back(std::move(item));
+    items.push_back(item);
   }
   // The Gouraud instances' vertices lit on all threads, before any draw.
   std::vector<size_t> counts(items.size());
   for (size_t i = 0; i < items.size(); ++i) counts[i] = items[i].shadedVertices ? items[i].shadedVertices->size() : 0;
   forEachVertexRange(&renderer, counts, [&](size_t i, size_t first, size_t last) {
-    lightVertices(*items[i].prepared, items[i].lighting, *items[i].shadedVertices, first, last);
+    lightVertices(*items[i].prepared, groups[items[i].group].lighting, *items[i].shadedVertices, first, last);
   });
   // The prepared and shaded vertices and the indices stay put.
   const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
-  for (const LitInstance& item : items) drawInstance(renderer, state, item, kind, keep);
+  for (const LitInstance& item : items) drawInstance(renderer, state, item, *groups[item.group].shader, kind);
 }
 
 void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,

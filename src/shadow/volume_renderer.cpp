@@ -99,6 +99,8 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
   const CountingOptions counting{scene.shadow.twoSidedStencil, scene.shadow.wrapOps};
   std::vector<const PreparedInstance*> casters;
   std::vector<StencilCounting> how;
+  casters.reserve(prepared.size());
+  how.reserve(prepared.size());
   for (const PreparedInstance& p : prepared) {
     if (!castsFor(p, light)) continue;
     casters.push_back(&p);
@@ -108,6 +110,9 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
   renderer.parallelFor(int(casters.size()), [&](int i) {
     volumes[size_t(i)].build(*casters[size_t(i)], light, scene.shadow, how[size_t(i)] == StencilCounting::ZFail);
   });
+  // The counting states of each kind, made once for the pass rather than once a caster.
+  const std::vector<RenderState> zpassStates = volumePassStates(base, StencilCounting::ZPass, counting);
+  const std::vector<RenderState> zfailStates = volumePassStates(base, StencilCounting::ZFail, counting);
   const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // `volumes` outlives it
   for (size_t i = 0; i < casters.size(); ++i) {
     const PreparedInstance& p = *casters[i];
@@ -119,7 +124,8 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
     totals.volume.sideTriangles += volume.volume.stats.sideTriangles;
     totals.volume.frontCapTriangles += volume.volume.stats.frontCapTriangles;
     totals.volume.backCapTriangles += volume.volume.stats.backCapTriangles;
-    for (const RenderState& state : volumePassStates(base, how[i], counting)) volume.drawAll(renderer, state, p.index);
+    for (const RenderState& state : how[i] == StencilCounting::ZFail ? zfailStates : zpassStates)
+      volume.drawAll(renderer, state, p.index);
   }
   return totals;
 }
