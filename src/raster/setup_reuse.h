@@ -28,6 +28,13 @@ namespace shadowref {
 class SetupReuse {
  public:
   bool holdsSetups() const { return kept_; }
+  // Holds no setups any more, as if new, but keeps its lists' buffers: for a caller that keeps it
+  // from frame to frame, drawing arrays at the same addresses (a renderer takes only setups it kept
+  // itself, but one renderer may draw two frames).
+  void forget() {
+    kept_ = false;
+    blocks_.clear();
+  }
 
  private:
   friend class Renderer;

@@ -35,7 +35,10 @@ class PassClock {
 void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResult& result, Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
   const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
-  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &renderer);
+  // Kept on this thread from frame to frame, the instances' buffers with them (prepareInstancesInto).
+  thread_local std::vector<PreparedInstance> keptPrepared;
+  prepareInstancesInto(instances, view, &renderer, keptPrepared);
+  const std::span<const PreparedInstance> prepared(keptPrepared);
   RenderState state;
   state.viewport = view.viewport;
   state.clipFar = !view.infinite;

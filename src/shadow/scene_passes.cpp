@@ -60,9 +60,9 @@ void forEachVertexRange(Renderer* renderer, std::span<const size_t> counts,
   }
 }
 
-std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
-                                               Renderer* renderer) {
-  std::vector<PreparedInstance> out(instances.size());
+void prepareInstancesInto(const std::vector<Instance>& instances, const SceneView& view, Renderer* renderer,
+                          std::vector<PreparedInstance>& out) {
+  out.resize(instances.size());
   std::vector<glm::dmat3> normalMatrices(instances.size());
   std::vector<size_t> counts(instances.size());
   for (size_t i = 0; i < instances.size(); ++i) {
@@ -76,10 +76,17 @@ std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& inst
     counts[i] = inst.mesh->positions.size();
     p.vertices.resize(counts[i]);  // constructed by prepareVertices
     p.indices = triangleIndices(*inst.mesh);
+    p.setups.forget();
   }
   forEachVertexRange(renderer, counts, [&](size_t i, size_t first, size_t last) {
     prepareVertices(out[i], normalMatrices[i], first, last);
   });
+}
+
+std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
+                                               Renderer* renderer) {
+  std::vector<PreparedInstance> out;
+  prepareInstancesInto(instances, view, renderer, out);
   return out;
 }
 

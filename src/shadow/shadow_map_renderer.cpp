@@ -149,7 +149,7 @@ void gouraudCameraVertices(const PreparedInstance& p, const LightingSetup& light
 // Step 2 for one set of lights (one accumulation frame). Returns false when a Gouraud material had
 // to be lit per pixel: more lights than ShadowMappedGouraudShader has varyings for.
 bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
-                    const std::vector<PreparedInstance>& prepared, const std::vector<std::unique_ptr<LightShadow>>& shadows) {
+                    std::span<const PreparedInstance> prepared, const std::vector<std::unique_ptr<LightShadow>>& shadows) {
   std::vector<const LightShadow*> active;
   for (const auto& s : shadows) active.push_back(s.get());
   const bool fitGouraud = active.size() <= size_t(ShadowMappedGouraudShader::kMaxLights);
@@ -244,7 +244,10 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
                       Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
   const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
-  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &renderer);
+  // Kept on this thread from frame to frame, the instances' buffers with them (prepareInstancesInto).
+  thread_local std::vector<PreparedInstance> keptPrepared;
+  prepareInstancesInto(instances, view, &renderer, keptPrepared);
+  const std::span<const PreparedInstance> prepared(keptPrepared);
   Framebuffer& fb = renderer.framebuffer();
   const bool trapezoidal = method == ShadowMethod::Trapezoidal;
 
