@@ -70,10 +70,4 @@ inline std::span<const uint32_t> triangleIndices(const Mesh& mesh) {
   return {glm::value_ptr(mesh.triangles.front()), 3 * mesh.triangles.size()};
 }
 
-// The same list copied, for a caller that adds to it.
-inline void copyTriangleIndices(const Mesh& mesh, std::vector<uint32_t>& out) {
-  const std::span<const uint32_t> indices = triangleIndices(mesh);
-  out.assign(indices.begin(), indices.end());
-}
-
 }  // namespace shadowref

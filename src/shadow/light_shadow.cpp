@@ -151,19 +151,33 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   std::vector<size_t> casters;
   for (size_t i = 0; i < instances.size(); ++i)
     if (instances[i].shadowMesh && withinRange(light, instances[i].shadowBounds)) casters.push_back(i);
-  std::vector<std::vector<ClipVertex>> vertices(casters.size());
-  std::vector<std::vector<uint32_t>> indices(casters.size());
+  // Each caster's vertices, and its indices where the near plane clips, kept on this thread from
+  // map to map and frame to frame as the shadow volumes' are (volume_renderer.cpp): made anew, the
+  // outdoor scene's lists were allocated on the threads and freed on this one, about 200 a frame,
+  // while the other threads waited. Unclipped, a caster draws its mesh's own indices.
+  // (References: in the tasks below a thread_local's name would be the worker's own.)
+  thread_local std::vector<std::vector<ClipVertex>> keptVertices;
+  thread_local std::vector<std::vector<uint32_t>> keptIndices;
+  std::vector<std::vector<ClipVertex>>& vertices = keptVertices;
+  std::vector<std::vector<uint32_t>>& clippedIndices = keptIndices;
+  if (vertices.size() < casters.size()) vertices.resize(casters.size());
+  if (clippedIndices.size() < casters.size()) clippedIndices.resize(casters.size());
+  std::vector<std::span<const uint32_t>> indices(casters.size());
   renderer.parallelFor(int(casters.size()), [&](int c) {
     const Instance& inst = instances[casters[size_t(c)]];
     const VertexTransform xf{view * inst.world, projection};
     const Mesh& mesh = *inst.shadowMesh;
     std::vector<ClipVertex>& v = vertices[size_t(c)];
+    v.clear();
     v.resize(mesh.positions.size());
     for (size_t k = 0; k < mesh.positions.size(); ++k) v[k].position = xf.toClip(glm::dvec4(mesh.positions[k], 1.0));
     if (clipNear > 0.0) {
-      appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, v, indices[size_t(c)]);
+      std::vector<uint32_t>& clipped = clippedIndices[size_t(c)];
+      clipped.clear();
+      appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, v, clipped);
+      indices[size_t(c)] = clipped;
     } else {
-      copyTriangleIndices(mesh, indices[size_t(c)]);
+      indices[size_t(c)] = triangleIndices(mesh);
     }
   });
   {

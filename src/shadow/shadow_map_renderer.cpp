@@ -146,6 +146,16 @@ void gouraudCameraVertices(const PreparedInstance& p, const LightingSetup& light
   }
 }
 
+// Instances of one material within range of the same lights share a lighting setup and, lit per
+// pixel, a shader (as drawLit's groups do, scene_passes.cpp): the outdoor scene's instances have a
+// handful of materials. A shader is a function of its setup and the maps: the same bytes.
+struct CameraGroup {
+  size_t material = 0;
+  std::vector<uint8_t> reached;  // per active light: whether it is within range
+  LightingSetup lighting;
+  std::unique_ptr<FragmentShader> perPixel;  // ShadowMappedShader, made for a per-pixel instance
+};
+
 // Step 2 for one set of lights (one accumulation frame). Returns false when a Gouraud material had
 // to be lit per pixel: more lights than ShadowMappedGouraudShader has varyings for.
 bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
@@ -153,46 +163,59 @@ bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& s
   std::vector<const LightShadow*> active;
   for (const auto& s : shadows) active.push_back(s.get());
   const bool fitGouraud = active.size() <= size_t(ShadowMappedGouraudShader::kMaxLights);
-  std::vector<LightingSetup> lighting(prepared.size());
+  std::vector<CameraGroup> groups;  // its shaders outlive the deferred draws
+  std::vector<size_t> groupOf(prepared.size());
   std::vector<uint8_t> gouraud(prepared.size());
+  std::vector<uint8_t> reached(active.size());
   bool gouraudKept = true;
   for (size_t i = 0; i < prepared.size(); ++i) {
     const Instance& inst = *prepared[i].instance;
-    const Material& material = scene.materials.at(size_t(inst.material));
-    lighting[i].material = toPhongMaterial(material);
-    lighting[i].globalAmbient = scene.ambient;
-    lighting[i].eye = view.eye;
-    // A light out of range (000 §4.3.1) contributes nothing but its share of the ambient.
-    for (const LightShadow* s : active)
-      lighting[i].lights.push_back(withinRange(s->light, inst.worldBounds) ? toPhongLight(s->light) : PhongLight{glm::dvec4(0.0)});
+    const size_t materialIndex = size_t(inst.material);
+    const Material& material = scene.materials.at(materialIndex);
+    for (size_t l = 0; l < active.size(); ++l) reached[l] = withinRange(active[l]->light, inst.worldBounds);
+    size_t g = 0;
+    while (g < groups.size() && !(groups[g].material == materialIndex && groups[g].reached == reached)) ++g;
+    if (g == groups.size()) {
+      CameraGroup& group = groups.emplace_back();
+      group.material = materialIndex;
+      group.reached = reached;
+      group.lighting.material = toPhongMaterial(material);
+      group.lighting.globalAmbient = scene.ambient;
+      group.lighting.eye = view.eye;
+      // A light out of range (000 §4.3.1) contributes nothing but its share of the ambient.
+      for (size_t l = 0; l < active.size(); ++l)
+        group.lighting.lights.push_back(reached[l] ? toPhongLight(active[l]->light) : PhongLight{glm::dvec4(0.0)});
+    }
+    groupOf[i] = g;
     const bool wants = material.shading == ShadingModel::Gouraud && !active.empty();
     gouraud[i] = wants && fitGouraud;
     gouraudKept = gouraudKept && (!wants || fitGouraud);
   }
-  // The Gouraud materials' vertices lit on all threads; they outlive the deferred draws.
-  std::vector<ClipVertexBuffer> litVertices(prepared.size());
+  // The Gouraud materials' vertices lit on all threads, into their instances' shaded vertices
+  // (kept from frame to frame with the instances); they outlive the deferred draws.
   std::vector<size_t> counts(prepared.size());
   for (size_t i = 0; i < prepared.size(); ++i) {
     if (!gouraud[i]) continue;
     counts[i] = prepared[i].vertices.size();
-    litVertices[i].resize(counts[i]);  // constructed by gouraudCameraVertices
+    prepared[i].shadedVertices.resize(counts[i]);  // constructed by gouraudCameraVertices
   }
   forEachVertexRange(&renderer, counts, [&](size_t i, size_t first, size_t last) {
-    gouraudCameraVertices(prepared[i], lighting[i], 1.0 / double(active.size()), litVertices[i], first, last);
+    gouraudCameraVertices(prepared[i], groups[groupOf[i]].lighting, 1.0 / double(active.size()),
+                          prepared[i].shadedVertices, first, last);
   });
-  std::vector<std::unique_ptr<FragmentShader>> keep;  // outlives the deferred draws too
+  const ShadowMappedGouraudShader gouraudShader(active);  // outlives the deferred draws too
   const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // the prepared geometry stays put
   for (size_t i = 0; i < prepared.size(); ++i) {
     const PreparedInstance& p = prepared[i];
     RenderState mirrored;
     DrawCall call;
     call.state = &stateFor(state, *p.instance, mirrored);
-    call.vertices = gouraud[i] ? std::span<const ClipVertex>(litVertices[i]) : std::span<const ClipVertex>(p.vertices);
+    call.vertices = gouraud[i] ? std::span<const ClipVertex>(p.shadedVertices) : std::span<const ClipVertex>(p.vertices);
     call.indices = p.indices;
     call.tag = drawTag(DrawKind::Lit, p.index);
-    if (gouraud[i]) keep.push_back(std::make_unique<ShadowMappedGouraudShader>(active));
-    else keep.push_back(std::make_unique<ShadowMappedShader>(lighting[i], active));
-    call.shader = keep.back().get();
+    CameraGroup& group = groups[groupOf[i]];
+    if (!gouraud[i] && !group.perPixel) group.perPixel = std::make_unique<ShadowMappedShader>(group.lighting, active);
+    call.shader = gouraud[i] ? static_cast<const FragmentShader*>(&gouraudShader) : group.perPixel.get();
     renderer.draw(call);
   }
   return gouraudKept;
