@@ -495,18 +495,33 @@ void Renderer::assembleQueued() {
   }
   pendingSetups_.resize(end);
   pendingBounds_.resize(end);
-  const size_t tasks = groups + queuedKept_.size();
+  // The kept draws in runs of about equal setups, a few per thread: a task and a row count each
+  // (the city's lit pass takes 129 kept draws, whose row counts the calling thread added one by
+  // one).
+  const size_t keptSetups = end - groupFirst[groups];
+  const size_t keptTasks = std::min(queuedKept_.size(), size_t(pool_->threadCount()) * kQueuedGroupsPerThread);
+  queuedKeptFirst_.assign(1, 0);
+  for (size_t k = 0, done = 0; k < queuedKept_.size(); ++k) {
+    done += pending_[queued_[queuedKept_[k]].pending].count;
+    const size_t upTo = queuedKeptFirst_.size();  // the number of draw k's run, counted from 1
+    if (upTo < keptTasks && done * keptTasks >= keptSetups * upTo) queuedKeptFirst_.push_back(k + 1);
+  }
+  if (queuedKeptFirst_.back() != queuedKept_.size()) queuedKeptFirst_.push_back(queuedKept_.size());
+  const size_t tasks = groups + queuedKeptFirst_.size() - 1;
   if (queuedRowWork_.size() < tasks) queuedRowWork_.resize(tasks);
   pool_->run(int(tasks), [&](int task) {
     RowWork& work = queuedRowWork_[size_t(task)].work;
     work.reset(fb_.height());
     if (size_t(task) >= groups) {
-      const QueuedAssembly& q = queued_[queuedKept_[size_t(task) - groups]];
-      const SetupReuse& kept = *q.kept;
-      const PendingDraw& pending = pending_[q.pending];
-      std::copy(kept.setups_.begin(), kept.setups_.end(), pendingSetups_.begin() + std::ptrdiff_t(pending.first));
-      std::copy(kept.bounds_.begin(), kept.bounds_.end(), pendingBounds_.begin() + std::ptrdiff_t(pending.first));
-      for (const SetupBounds& t : kept.bounds_) work.addTriangle(t.minX, t.minY, t.maxX, t.maxY, pending.region);
+      const size_t run = size_t(task) - groups;
+      for (size_t k = queuedKeptFirst_[run]; k < queuedKeptFirst_[run + 1]; ++k) {
+        const QueuedAssembly& q = queued_[queuedKept_[k]];
+        const SetupReuse& kept = *q.kept;
+        const PendingDraw& pending = pending_[q.pending];
+        std::copy(kept.setups_.begin(), kept.setups_.end(), pendingSetups_.begin() + std::ptrdiff_t(pending.first));
+        std::copy(kept.bounds_.begin(), kept.bounds_.end(), pendingBounds_.begin() + std::ptrdiff_t(pending.first));
+        for (const SetupBounds& t : kept.bounds_) work.addTriangle(t.minX, t.minY, t.maxX, t.maxY, pending.region);
+      }
       return;
     }
     const size_t g = size_t(task);

@@ -249,6 +249,7 @@ class Renderer {
   std::vector<size_t> queuedGroups_;  // assembleQueued's group g: pieces [queuedGroups_[g], queuedGroups_[g + 1])
   std::vector<AssemblyWorkspace> queuedWs_;
   std::vector<size_t> queuedKept_;  // the queued draws that take kept setups
+  std::vector<size_t> queuedKeptFirst_;  // assembleQueued's run r of them: [queuedKeptFirst_[r], queuedKeptFirst_[r + 1])
   // A queued draw whose setups are to be kept in its SetupReuse, with its pieces' counts.
   struct KeptDraw {
     size_t draw = 0;
