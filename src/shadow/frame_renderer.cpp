@@ -1,7 +1,6 @@
 #include "shadow/frame_renderer.h"
 
 #include <chrono>
-#include <cstdio>
 #include <stdexcept>
 
 #include "raster/clear.h"
@@ -57,9 +56,8 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
 }  // namespace
 
 std::string numberedPass(int& counter, const std::string& what) {
-  char number[16];
-  std::snprintf(number, sizeof number, "%02d-", ++counter);
-  return number + what;
+  const std::string number = std::to_string(++counter);
+  return (number.size() < 2 ? "0" : "") + number + "-" + what;
 }
 
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {

@@ -2,8 +2,6 @@
 
 #include <array>
 #include <chrono>
-#include <cstdio>
-#include <sstream>
 
 #include "raster/clear.h"
 #include "raster/fragment_shader.h"
@@ -161,17 +159,19 @@ void drawVolumeView(Renderer& renderer, const RenderState& base, const Scene& sc
 
 std::string lightNote(size_t index, const Light& light, const LightTotals& t, const RasterStats& before,
                       const RasterStats& after) {
-  std::ostringstream s;
-  s << "light L" << index << " '" << light.name << "': " << t.objects << " casters (" << t.zpass << " z-pass, "
-    << t.zfail << " z-fail), silhouette edges " << t.volume.silhouetteEdges << ", side triangles "
-    << t.volume.sideTriangles << ", front cap " << t.volume.frontCapTriangles << ", back cap "
-    << t.volume.backCapTriangles << ", volume fragments " << (after.fragments - before.fragments)
-    << ", stencil writes " << (after.stencilWrites - before.stencilWrites);
+  using std::to_string;
+  std::string s = "light L" + to_string(index) + " '" + light.name + "': " + to_string(t.objects) + " casters (" +
+                  to_string(t.zpass) + " z-pass, " + to_string(t.zfail) + " z-fail), silhouette edges " +
+                  to_string(t.volume.silhouetteEdges) + ", side triangles " + to_string(t.volume.sideTriangles) +
+                  ", front cap " + to_string(t.volume.frontCapTriangles) + ", back cap " +
+                  to_string(t.volume.backCapTriangles) + ", volume fragments " +
+                  to_string(after.fragments - before.fragments) + ", stencil writes " +
+                  to_string(after.stencilWrites - before.stencilWrites);
   if (!t.zfailObjects.empty()) {
-    s << "\n  auto chose z-fail for:";
-    for (const std::string& path : t.zfailObjects) s << " '" << path << "'";
+    s += "\n  auto chose z-fail for:";
+    for (const std::string& path : t.zfailObjects) s += " '" + path + "'";
   }
-  return s.str();
+  return s;
 }
 
 }  // namespace
