@@ -26,8 +26,8 @@ struct PreparedInstance {
   ClipVertexBuffer vertices;
   std::span<const uint32_t> indices;  // the mesh's own (triangleIndices)
   // A Gouraud material's vertices as its passes draw them: the clip positions of `vertices`, the
-  // varyings each vertex's colour for the pass (drawLit) — one array for the frame, so that each
-  // pass draws the same one.
+  // varyings each vertex's colour for the pass (drawLit; the shadow maps' camera pass, a colour per
+  // light) — one array for the frame, so that each pass draws the same one.
   mutable ClipVertexBuffer shadedVertices;
   // The setups of its scene draws (ambient, then each light's lit pass: the same triangles in a
   // state that sets them up alike), kept for the frame's next pass.
