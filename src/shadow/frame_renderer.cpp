@@ -34,10 +34,7 @@ class PassClock {
 void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResult& result, Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
   const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
-  // Kept on this thread from frame to frame, the instances' buffers with them (prepareInstancesInto).
-  thread_local std::vector<PreparedInstance> keptPrepared;
-  prepareInstancesInto(instances, view, &renderer, keptPrepared);
-  const std::span<const PreparedInstance> prepared(keptPrepared);
+  const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
   RenderState state;
   state.viewport = view.viewport;
   state.clipFar = !view.infinite;

@@ -90,6 +90,13 @@ std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& inst
   return out;
 }
 
+std::span<const PreparedInstance> prepareFrameInstances(const std::vector<Instance>& instances, const SceneView& view,
+                                                        Renderer& renderer) {
+  thread_local std::vector<PreparedInstance> kept;
+  prepareInstancesInto(instances, view, &renderer, kept);
+  return kept;
+}
+
 PhongLight toPhongLight(const Light& light) {
   PhongLight p;
   p.position = light.homogeneous();

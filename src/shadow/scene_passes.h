@@ -44,11 +44,15 @@ const RenderState& stateFor(const RenderState& state, const Instance& instance, 
 std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
                                                Renderer* renderer = nullptr);
 // The same into `out`, whose instances keep the buffers they grew in the last call (their setups
-// forgotten). A frame renderer keeps one list on its thread from frame to frame: made anew, the
-// city's 129 instances allocated and freed about 650 buffers a frame on the calling thread, while
-// the other threads waited.
+// forgotten).
 void prepareInstancesInto(const std::vector<Instance>& instances, const SceneView& view, Renderer* renderer,
                           std::vector<PreparedInstance>& out);
+// The same into one list kept on the calling thread from frame to frame, for a frame's passes:
+// valid until the next call on this thread. Made anew each frame, the city's 129 instances
+// allocated and freed about 650 buffers a frame on the calling thread while the other threads
+// waited.
+std::span<const PreparedInstance> prepareFrameInstances(const std::vector<Instance>& instances, const SceneView& view,
+                                                        Renderer& renderer);
 
 // fn(item, first, last) for the vertices [first, last) of every item, items having counts[item]
 // vertices, in ranges of about a thousand: on the renderer's threads when one is given. Each vertex

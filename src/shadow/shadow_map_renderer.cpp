@@ -267,10 +267,7 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
                       Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
   const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
-  // Kept on this thread from frame to frame, the instances' buffers with them (prepareInstancesInto).
-  thread_local std::vector<PreparedInstance> keptPrepared;
-  prepareInstancesInto(instances, view, &renderer, keptPrepared);
-  const std::span<const PreparedInstance> prepared(keptPrepared);
+  const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
   Framebuffer& fb = renderer.framebuffer();
   const bool trapezoidal = method == ShadowMethod::Trapezoidal;
 

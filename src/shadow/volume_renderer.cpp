@@ -191,10 +191,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
   // Volumes reach infinity: P_inf, no far clipping (000 §3.3).
   const SceneView view = makeCameraView(scene, true);
   const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
-  // Kept on this thread from frame to frame, the instances' buffers with them (prepareInstancesInto).
-  thread_local std::vector<PreparedInstance> keptPrepared;
-  prepareInstancesInto(instances, view, &renderer, keptPrepared);
-  const std::span<const PreparedInstance> prepared(keptPrepared);
+  const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
   Framebuffer& fb = renderer.framebuffer();
   int passCounter = 0;
   auto pass = [&](const std::string& what, auto&& fn) {
