@@ -1,5 +1,6 @@
 #include "raster/thread_pool.h"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -15,6 +16,15 @@ int64_t nanosecondsNow() {
 // rasterizations (building a pass's volumes, setting up its triangles), so that the worker is
 // there when the bands are handed out; short enough not to hold a core between frames.
 constexpr std::chrono::microseconds kSpinTime{3000};
+
+// Tasks a claim takes: a kClaimShare-th of a thread's share of those left (guided
+// self-scheduling). A claim is an atomic operation on a cache line every thread writes — between
+// cores 50 to a few hundred nanoseconds here — and in a run of 129 small tasks (the city's
+// vertex ranges, 1-8 us each) claimed one at a time the two threads stood idle for 14 % of it;
+// claimed this way, 3 %. Large claims first, single tasks at the end, so that the threads still
+// end together; a run of fewer than 2 x kClaimShare tasks a thread (the bands of a pass, already
+// cut into shrinking shares) is claimed one task at a time, as before.
+constexpr int kClaimShare = 8;
 
 // One step of a wait loop. The two hardware threads of this machine may be siblings of one core:
 // a sibling that waits in sched_yield (a system call a step) takes issue slots from the one that
@@ -40,6 +50,8 @@ ThreadPool* threadPoolForThisThread(int threads) {
   return pool.get();
 }
 
+int ThreadPool::claimSize(int left, int threads) { return std::max(1, left / (kClaimShare * threads)); }
+
 int defaultThreadCount() {
   const unsigned n = std::thread::hardware_concurrency();
   return n == 0 ? 1 : int(n);
@@ -63,24 +75,28 @@ void ThreadPool::drain(uint32_t generation) {
   for (;;) {
     // count_ may already be the next run's (run() stores it after closing this run's tickets):
     // then the claim below fails, because the acquire load saw that store and so the ticket
-    // stored before it.
-    if (uint32_t(ticket >> 32) != generation || int(ticket & 0xFFFFFFFFu) >= count_.load(std::memory_order_acquire))
-      return;
-    if (!ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel)) continue;
-    // The claimed task belongs to this run, which cannot end before it is done: task_ is its.
+    // stored before it. A claim that succeeds therefore saw this run's count.
+    const int first = int(ticket & 0xFFFFFFFFu), count = count_.load(std::memory_order_acquire);
+    if (uint32_t(ticket >> 32) != generation || first >= count) return;
+    const int claimed = claimSize(count - first, threadCount());
+    if (!ticket_.compare_exchange_weak(ticket, ticket + uint64_t(claimed), std::memory_order_acq_rel)) continue;
+    // The claimed tasks belong to this run, which cannot end before they are done: task_ is its.
     const bool timing = timing_.load(std::memory_order_relaxed);
     const int64_t start = timing ? nanosecondsNow() : 0;
-    try {
-      (*task_.load(std::memory_order_relaxed))(int(ticket & 0xFFFFFFFFu));
-    } catch (...) {
-      std::lock_guard lock(mutex_);
-      if (!error_) error_ = std::current_exception();
+    const std::function<void(int)>& task = *task_.load(std::memory_order_relaxed);
+    for (int i = first; i < first + claimed; ++i) {
+      try {
+        task(i);
+      } catch (...) {
+        std::lock_guard lock(mutex_);
+        if (!error_) error_ = std::current_exception();
+      }
     }
     if (timing) {
       taskNanoseconds_.fetch_add(nanosecondsNow() - start, std::memory_order_relaxed);
-      tasks_.fetch_add(1, std::memory_order_relaxed);
+      tasks_.fetch_add(claimed, std::memory_order_relaxed);
     }
-    done_.fetch_add(1, std::memory_order_release);
+    done_.fetch_add(claimed, std::memory_order_release);
     ticket = ticket_.load(std::memory_order_acquire);
   }
 }

@@ -49,6 +49,10 @@ class ThreadPool {
   void timeRuns(bool on);  // and starts the times from zero
   Times times() const;
 
+  // How many of a run's `left` unclaimed tasks one claim of `threads` threads takes: one task
+  // when a thread's share of them is small, a part of that share when it is large (thread_pool.cpp).
+  static int claimSize(int left, int threads);
+
  private:
   void workerLoop();
   // Claims and runs tasks of run number `generation` until none is left.

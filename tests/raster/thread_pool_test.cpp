@@ -1,6 +1,7 @@
 // The thread pool under the rasterizer: every task runs exactly once per run, runs follow each
 // other without a late worker taking a task of the next one, and a task's exception reaches the
 // caller of run() after the other tasks have finished.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
@@ -20,13 +21,43 @@ TEST_CASE("every task of every run runs exactly once, for 1, 2 and 8 threads", "
   for (int threads : {1, 2, 8}) {
     ThreadPool pool(threads);
     for (int run = 0; run < 300; ++run) {
-      const int count = 1 + run % 37;
+      // Small runs are claimed a task at a time, large ones (every tenth here) in shrinking claims.
+      const int count = run % 10 == 9 ? 100 + 37 * run : 1 + run % 37;
       std::vector<std::atomic<int>> hits(static_cast<size_t>(count));
       pool.run(count, [&](int i) { hits[size_t(i)].fetch_add(1); });
       int wrong = 0;
       for (const std::atomic<int>& h : hits) wrong += h.load() != 1;
       INFO(threads << " threads, run " << run);
       REQUIRE(wrong == 0);
+    }
+  }
+}
+
+TEST_CASE("claims shrink with the tasks left: large first, single tasks at the end", "[raster][threads]") {
+  // Worked out by hand: a claim takes a sixteenth of what is left at two threads (an eighth of a
+  // thread's share), a 24th at three, and never less than one task.
+  CHECK(ThreadPool::claimSize(129, 2) == 8);
+  CHECK(ThreadPool::claimSize(32, 2) == 2);
+  CHECK(ThreadPool::claimSize(31, 2) == 1);  // the six bands of a pass: one at a time
+  CHECK(ThreadPool::claimSize(1, 2) == 1);
+  CHECK(ThreadPool::claimSize(129, 3) == 5);
+  CHECK(ThreadPool::claimSize(5000, 8) == 78);
+  // Claimed one after another, the claims cover every task once and end in single tasks.
+  for (int threads : {2, 3, 8}) {
+    for (int count : {1, 31, 129, 1000, 100000}) {
+      std::vector<int> claims;
+      for (int next = 0; next < count;) {
+        claims.push_back(ThreadPool::claimSize(count - next, threads));
+        next += claims.back();
+      }
+      int sum = 0;
+      for (int c : claims) sum += c;
+      INFO(threads << " threads, " << count << " tasks");
+      CHECK(sum == count);
+      CHECK(claims.back() == 1);
+      CHECK(std::is_sorted(claims.rbegin(), claims.rend()));
+      // Each claim at most an eighth of a thread's even share of what was left.
+      CHECK(claims.front() <= std::max(1, count / (8 * threads)));
     }
   }
 }
@@ -42,6 +73,15 @@ TEST_CASE("a task's exception is rethrown by run() once the other tasks are done
                              }),
                     std::runtime_error);
     CHECK(ran.load() == 16);
+    // In a run claimed several tasks at a time, the tasks claimed with the throwing one run too.
+    ran = 0;
+    CHECK_THROWS_AS(pool.run(1000,
+                             [&](int i) {
+                               ran.fetch_add(1);
+                               if (i == 3 || i == 998) throw std::runtime_error("task");
+                             }),
+                    std::runtime_error);
+    CHECK(ran.load() == 1000);
     // The pool is usable afterwards, and the error does not come back.
     std::atomic<int> again{0};
     pool.run(8, [&](int) { again.fetch_add(1); });
