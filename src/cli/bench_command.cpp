@@ -35,6 +35,54 @@ void printPoolTimes(const ThreadPool::Times& t, int threads, const std::vector<d
   std::printf("  outside runs (mean)       %9.3f ms   the calling thread alone\n",
               std::max(0.0, total - t.runMilliseconds) / frames);
 }
+int64_t steadyNanoseconds() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+struct FrameSpan {
+  int64_t start = 0, end = 0;  // steady_clock nanoseconds, as the pool's run records
+};
+
+// The pool's runs frame by frame, in order: run k of a frame, its tasks, its time, the share of
+// the threads' time in it that went to no task (waiting for a task to start or for another
+// thread's last), and the calling thread's time alone before it — medians over the frames. Where a
+// frame loses against twice the speed of one thread: long gaps are serial work, a high idle share
+// in a long run is its threads' ends apart. Frames with another number of runs than the last one
+// are left out of the medians.
+void printRuns(const std::vector<ThreadPool::RunRecord>& records, const std::vector<FrameSpan>& frames, int threads) {
+  std::vector<std::vector<const ThreadPool::RunRecord*>> perFrame(frames.size());
+  size_t next = 0;
+  for (size_t f = 0; f < frames.size(); ++f) {
+    while (next < records.size() && records[next].start < frames[f].start) ++next;
+    for (; next < records.size() && records[next].end <= frames[f].end; ++next) perFrame[f].push_back(&records[next]);
+  }
+  const size_t runs = perFrame.empty() ? 0 : perFrame.back().size();
+  std::vector<size_t> used;
+  for (size_t f = 0; f < frames.size(); ++f)
+    if (perFrame[f].size() == runs) used.push_back(f);
+  std::printf("  runs of a frame (medians of %zu frames): tasks, time, the threads' time in it that no task used,\n"
+              "  and the calling thread's time alone before it\n", used.size());
+  std::printf("     run  tasks         ms   idle %%   alone before, ms\n");
+  const auto ms = [](int64_t ns) { return double(ns) * 1e-6; };
+  for (size_t k = 0; k < runs; ++k) {
+    std::vector<double> tasks, length, idle, before;
+    for (size_t f : used) {
+      const ThreadPool::RunRecord& r = *perFrame[f][k];
+      const int64_t previousEnd = k == 0 ? frames[f].start : perFrame[f][k - 1]->end;
+      const double runMs = ms(r.end - r.start);
+      tasks.push_back(r.tasks);
+      length.push_back(runMs);
+      idle.push_back(runMs > 0.0 ? 100.0 * (1.0 - ms(r.taskNanoseconds) / (threads * runMs)) : 0.0);
+      before.push_back(ms(r.start - previousEnd));
+    }
+    std::printf("  %6zu %6.0f  %9.3f  %7.1f  %9.3f\n", k + 1, median(tasks), median(length), std::max(0.0, median(idle)),
+                median(before));
+  }
+  std::vector<double> after;
+  for (size_t f : used) after.push_back(ms(frames[f].end - (runs ? perFrame[f].back()->end : frames[f].start)));
+  if (!after.empty()) std::printf("  after the last run                           %9.3f\n", median(after));
+}
 }  // namespace
 
 void addBenchCommand(CLI::App& app, BenchArgs& args) {
@@ -45,6 +93,9 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
   bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 256));
   bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400");
   bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");
+  bench->add_flag("--runs", args.runs,
+                  "With threads: each run of the thread pool in a frame (tasks, time, idle share, the calling "
+                  "thread's time alone before it)");
 }
 
 int runBench(const BenchArgs& args) {
@@ -61,13 +112,17 @@ int runBench(const BenchArgs& args) {
   const int threads = args.threads == 0 ? defaultThreadCount() : args.threads;
   ThreadPool* pool = threadPoolForThisThread(threads);  // the one renderFrame's renderers use
   ThreadPool::Times poolTimes;
+  std::vector<ThreadPool::RunRecord> runRecords;
+  std::vector<FrameSpan> frameSpans;
   try {
     renderFrame(*scene, options);  // warm-up: page in buffers and code
     if (pool) pool->timeRuns(true);
     for (int i = 0; i < args.frames; ++i) {
-      const auto start = std::chrono::steady_clock::now();
+      const int64_t start = steadyNanoseconds();
       const FrameResult frame = renderFrame(*scene, options);
-      frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      const int64_t end = steadyNanoseconds();
+      frameMs.push_back(double(end - start) * 1e-6);
+      frameSpans.push_back({start, end});
       for (const PassTiming& t : frame.timings) {
         if (!passMs.count(t.pass)) passOrder.push_back(t.pass);
         passMs[t.pass].push_back(t.milliseconds);
@@ -75,6 +130,7 @@ int runBench(const BenchArgs& args) {
     }
     if (pool) {
       poolTimes = pool->times();
+      runRecords = pool->runRecords();
       pool->timeRuns(false);
     }
   } catch (const std::exception& e) {
@@ -92,6 +148,10 @@ int runBench(const BenchArgs& args) {
   std::printf("  frame (median)            %9.3f ms\n", median(frameMs));
   for (const std::string& pass : passOrder) std::printf("  %-25s %9.3f ms\n", pass.c_str(), median(passMs[pass]));
   if (pool) printPoolTimes(poolTimes, threads, frameMs);
+  if (args.runs) {
+    if (pool) printRuns(runRecords, frameSpans, threads);
+    else std::printf("  runs: none (one thread draws without the pool)\n");
+  }
   return kSuccess;
 }
 

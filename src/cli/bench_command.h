@@ -18,6 +18,7 @@ struct BenchArgs {
   int frames = 5;
   int threads = 0;
   bool csv = false;
+  bool runs = false;  // --runs: each pool run of a frame
 };
 
 void addBenchCommand(CLI::App& app, BenchArgs& args);

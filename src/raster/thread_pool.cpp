@@ -132,14 +132,17 @@ void ThreadPool::timeRuns(bool on) {
   tasks_ = 0;
   runNanoseconds_ = 0;
   taskNanoseconds_ = 0;
+  records_.clear();
   timing_ = on;
 }
 
-int64_t ThreadPool::recordRun(int64_t start) {
-  const int64_t elapsed = nanosecondsNow() - start;
-  runNanoseconds_ += elapsed;
+// Every task of the run added its time before it counted itself done, and run() saw all of them
+// done: the task time read here is the run's whole.
+void ThreadPool::recordRun(int tasks, int64_t start, int64_t tasksBefore) {
+  const int64_t end = nanosecondsNow();
+  runNanoseconds_ += end - start;
   runs_ += 1;
-  return elapsed;
+  records_.push_back({tasks, start, end, taskNanoseconds_.load() - tasksBefore});
 }
 
 ThreadPool::Times ThreadPool::times() const {
@@ -149,6 +152,7 @@ ThreadPool::Times ThreadPool::times() const {
 void ThreadPool::run(int count, const std::function<void(int)>& task) {
   const bool timing = timing_.load(std::memory_order_relaxed);
   const int64_t start = timing ? nanosecondsNow() : 0;
+  const int64_t tasksBefore = timing ? taskNanoseconds_.load() : 0;
   if (workers_.empty() || count <= 1) {
     std::exception_ptr error;
     for (int i = 0; i < count; ++i) {
@@ -159,9 +163,9 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
       }
     }
     if (timing) {  // the caller's tasks, one after another, are the whole run
-      const int64_t elapsed = recordRun(start);
-      taskNanoseconds_ += elapsed;
+      taskNanoseconds_ += nanosecondsNow() - start;
       tasks_ += count;
+      recordRun(count, start, tasksBefore);
     }
     if (error) std::rethrow_exception(error);
     return;
@@ -182,7 +186,7 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
   }
   drain(generation);
   for (int step = 0; done_.load(std::memory_order_acquire) < count; ++step) relax(step);
-  if (timing) recordRun(start);
+  if (timing) recordRun(count, start, tasksBefore);
   std::exception_ptr error;
   {
     std::lock_guard lock(mutex_);

@@ -48,6 +48,14 @@ class ThreadPool {
   };
   void timeRuns(bool on);  // and starts the times from zero
   Times times() const;
+  // Each run while timing is on, in order: its tasks, when it began and ended (steady_clock
+  // nanoseconds since that clock's epoch) and the threads' time inside its tasks. What
+  // `shadowref bench --runs` lays out run by run. Started again by timeRuns.
+  struct RunRecord {
+    int tasks = 0;
+    int64_t start = 0, end = 0, taskNanoseconds = 0;
+  };
+  const std::vector<RunRecord>& runRecords() const { return records_; }
 
   // How many of a run's `left` unclaimed tasks one claim of `threads` threads takes: one task
   // when a thread's share of them is small, a part of that share when it is large (thread_pool.cpp).
@@ -58,8 +66,9 @@ class ThreadPool {
   // Claims and runs tasks of run number `generation` until none is left.
   void drain(uint32_t generation);
   uint32_t waitForWork(uint32_t seen);
-  // Adds a run that began at `start` (nanoseconds) to the times; returns its length.
-  int64_t recordRun(int64_t start);
+  // Adds a run of `tasks` that began at `start` (nanoseconds), when the task time stood at
+  // `tasksBefore`, to the times.
+  void recordRun(int tasks, int64_t start, int64_t tasksBefore);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -77,6 +86,7 @@ class ThreadPool {
   std::exception_ptr error_;  // the first exception of the current run, under mutex_
   std::atomic<bool> timing_{false};
   std::atomic<int64_t> runs_{0}, tasks_{0}, runNanoseconds_{0}, taskNanoseconds_{0};
+  std::vector<RunRecord> records_;  // written by the calling thread only, at each run's end
 };
 
 // Runs task(i) for i in [0, count), on several threads or on this one (Renderer::parallelFor); an

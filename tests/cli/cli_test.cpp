@@ -2,6 +2,8 @@
 // file:line:col on stderr, output files complete or absent.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -130,6 +132,44 @@ TEST_CASE("bench prints the frame, each pass, and with threads where their time 
   CHECK(two.out.find("the 2 threads busy") != std::string::npos);
   CHECK(two.out.find("outside runs (mean)") != std::string::npos);
   CHECK(run("bench " + scene + " --frames 0").status != 0);
+}
+
+TEST_CASE("bench --runs lays out a frame's pool runs; with one frame they and the gaps add up to it", "[cli]") {
+  const std::string scene = "scenes/room.yaml -D image.width=160 -D image.height=128";
+  const Run r = run("bench " + scene + " --frames 1 --threads 2 --runs");
+  REQUIRE(r.status == 0);
+  std::istringstream in(r.out);
+  std::string line;
+  double frame = -1.0, sum = 0.0, after = -1.0;
+  int rows = 0, lastRun = 0;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string first;
+    fields >> first;
+    if (line.find("frame (median)") != std::string::npos) std::sscanf(line.c_str(), " frame (median) %lf", &frame);
+    if (line.find("after the last run") != std::string::npos) std::sscanf(line.c_str(), " after the last run %lf", &after);
+    int runNumber = 0, tasks = 0;
+    double ms = 0.0, idle = 0.0, before = 0.0;
+    if (std::sscanf(line.c_str(), " %d %d %lf %lf %lf", &runNumber, &tasks, &ms, &idle, &before) == 5) {
+      CHECK(runNumber == lastRun + 1);  // every run, in order
+      lastRun = runNumber;
+      CHECK(tasks >= 0);
+      CHECK(ms >= 0.0);
+      CHECK(idle >= 0.0);
+      CHECK(idle <= 100.0);
+      sum += ms + before;
+      ++rows;
+    }
+  }
+  REQUIRE(frame > 0.0);
+  REQUIRE(after >= 0.0);
+  CHECK(rows >= 3);  // the room's passes: at least the ambient, stencil and lit bands
+  // One frame: its runs, the calling thread's time before each and after the last are the frame,
+  // each printed to a microsecond.
+  CHECK(std::abs(sum + after - frame) <= 0.0005 * (2 * rows + 2));
+  const Run one = run("bench " + scene + " --frames 1 --threads 1 --runs");
+  CHECK(one.status == 0);
+  CHECK(one.out.find("runs: none") != std::string::npos);
 }
 
 TEST_CASE("the --help text lists every subcommand and exits 0", "[cli]") {

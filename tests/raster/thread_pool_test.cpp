@@ -142,8 +142,22 @@ TEST_CASE("the pool's timers: runs, tasks, and task time within the threads' run
     CHECK(t.taskMilliseconds <= threads * t.runMilliseconds);
     // Six tasks of 10 ms on `threads` threads take at least ceil(6 / threads) × 10 ms, plus 5.
     CHECK(t.runMilliseconds >= 10.0 * ((6 + threads - 1) / threads) + 5.0);
+    // The same two runs one by one, in order: each within its time, the first's tasks at least
+    // their 60 ms of sleep and at most every thread's time in it.
+    const std::vector<ThreadPool::RunRecord>& records = pool.runRecords();
+    REQUIRE(records.size() == 2);
+    CHECK(records[0].tasks == 6);
+    CHECK(records[1].tasks == 1);
+    CHECK(records[0].start <= records[0].end);
+    CHECK(records[0].end <= records[1].start);
+    CHECK(records[0].taskNanoseconds >= 60'000'000);
+    CHECK(records[0].taskNanoseconds <= threads * (records[0].end - records[0].start));
+    CHECK(records[1].taskNanoseconds >= 5'000'000);
+    CHECK(double(records[0].end - records[0].start + records[1].end - records[1].start) * 1e-6 ==
+          Approx(t.runMilliseconds).epsilon(1e-9));
     pool.timeRuns(false);
     pool.run(2, [](int) {});
     CHECK(pool.times().runs == 0);  // turned off: started from zero and not counting
+    CHECK(pool.runRecords().empty());
   }
 }
