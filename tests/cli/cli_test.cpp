@@ -134,7 +134,7 @@ TEST_CASE("bench prints the frame, each pass, and with threads where their time 
   CHECK(run("bench " + scene + " --frames 0").status != 0);
 }
 
-TEST_CASE("bench --runs lays out a frame's pool runs; with one frame they and the gaps add up to it", "[cli]") {
+TEST_CASE("bench --runs lays out a frame's pool runs, which with the gaps add up to one frame", "[cli]") {
   const std::string scene = "scenes/room.yaml -D image.width=160 -D image.height=128";
   const Run r = run("bench " + scene + " --frames 1 --threads 2 --runs");
   REQUIRE(r.status == 0);
