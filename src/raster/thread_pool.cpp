@@ -92,10 +92,7 @@ void ThreadPool::drain(uint32_t generation) {
         if (!error_) error_ = std::current_exception();
       }
     }
-    if (timing) {
-      taskNanoseconds_.fetch_add(nanosecondsNow() - start, std::memory_order_relaxed);
-      tasks_.fetch_add(claimed, std::memory_order_relaxed);
-    }
+    if (timing) taskNanoseconds_.fetch_add(nanosecondsNow() - start, std::memory_order_relaxed);
     done_.fetch_add(claimed, std::memory_order_release);
     ticket = ticket_.load(std::memory_order_acquire);
   }
@@ -128,9 +125,6 @@ void ThreadPool::workerLoop() {
 }
 
 void ThreadPool::timeRuns(bool on) {
-  runs_ = 0;
-  tasks_ = 0;
-  runNanoseconds_ = 0;
   taskNanoseconds_ = 0;
   records_.clear();
   timing_ = on;
@@ -140,13 +134,20 @@ void ThreadPool::timeRuns(bool on) {
 // done: the task time read here is the run's whole.
 void ThreadPool::recordRun(int tasks, int64_t start, int64_t tasksBefore) {
   const int64_t end = nanosecondsNow();
-  runNanoseconds_ += end - start;
-  runs_ += 1;
   records_.push_back({tasks, start, end, taskNanoseconds_.load() - tasksBefore});
 }
 
 ThreadPool::Times ThreadPool::times() const {
-  return {runs_.load(), tasks_.load(), double(runNanoseconds_.load()) * 1e-6, double(taskNanoseconds_.load()) * 1e-6};
+  Times t;
+  int64_t runNanoseconds = 0;
+  for (const RunRecord& r : records_) {
+    t.runs += 1;
+    t.tasks += r.tasks;
+    runNanoseconds += r.end - r.start;
+  }
+  t.runMilliseconds = double(runNanoseconds) * 1e-6;
+  t.taskMilliseconds = double(taskNanoseconds_.load()) * 1e-6;
+  return t;
 }
 
 void ThreadPool::run(int count, const std::function<void(int)>& task) {
@@ -164,7 +165,6 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
     }
     if (timing) {  // the caller's tasks, one after another, are the whole run
       taskNanoseconds_ += nanosecondsNow() - start;
-      tasks_ += count;
       recordRun(count, start, tasksBefore);
     }
     if (error) std::rethrow_exception(error);

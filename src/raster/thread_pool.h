@@ -85,8 +85,8 @@ class ThreadPool {
   std::atomic<int> count_{0};
   std::exception_ptr error_;  // the first exception of the current run, under mutex_
   std::atomic<bool> timing_{false};
-  std::atomic<int64_t> runs_{0}, tasks_{0}, runNanoseconds_{0}, taskNanoseconds_{0};
-  std::vector<RunRecord> records_;  // written by the calling thread only, at each run's end
+  std::atomic<int64_t> taskNanoseconds_{0};  // every thread's, added per claim
+  std::vector<RunRecord> records_;  // written by the calling thread only, at each run's end: times() sums them
 };
 
 // Runs task(i) for i in [0, count), on several threads or on this one (Renderer::parallelFor); an
