@@ -47,9 +47,9 @@
 #include <unistd.h>
 #include <vector>
 
-#include "bench_stats.h"
 #include "issue_targets.h"
 #include "conformance/osmesa_harness.h"
+#include "cli/timing_stats.h"
 #include "image/image_writer.h"
 #include "mesa_frame.h"
 #include "raster/allocator_tuning.h"
@@ -57,6 +57,10 @@
 #include "shadow/frame_renderer.h"
 
 namespace shadowref::bench {
+
+using timing::fitLine;
+using timing::LineFit;
+using timing::median;
 
 namespace {
 
@@ -339,8 +343,8 @@ struct Measured {
   std::vector<double> cpuRunMedians;
   std::vector<double> crossCore;  // crossCoreNs() right before each run (shadowref's 2-thread runs)
   std::string renderer;
-  double median() const { return bench::median(runMedians); }
-  double cpuMedian() const { return bench::median(cpuRunMedians); }
+  double median() const { return timing::median(runMedians); }
+  double cpuMedian() const { return timing::median(cpuRunMedians); }
   double min() const { return *std::min_element(runMedians.begin(), runMedians.end()); }
   double cpuMin() const { return *std::min_element(cpuRunMedians.begin(), cpuRunMedians.end()); }
   void add(const Measured& more) {  // another round's runs of the same configuration

@@ -12,6 +12,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/timing_stats.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/shadow_method.h"
@@ -19,6 +20,7 @@
 namespace shadowref::bench {
 
 namespace {
+using timing::median;
 
 // The peak resident set of this process image: VmHWM of /proc/self/status. Not getrusage's
 // ru_maxrss: Linux carries the forking parent's peak over fork and exec into the child's ru_maxrss,
@@ -66,12 +68,6 @@ double processCpuMs() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 
+#include "cli/timing_stats.h"
 #include "raster/allocator_tuning.h"
 #include "raster/thread_pool.h"
 #include "shadow/frame_renderer.h"
@@ -15,11 +16,7 @@
 namespace shadowref::cli {
 
 namespace {
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using timing::median;
 
 // Where the threads' time went, per frame on average: inside the pool's runs (and how much of
 // the threads' time there went to tasks rather than waiting), and outside them, where the

@@ -1,12 +1,13 @@
-// Small statistics for the benchmarks: the median (timings jump, the mean follows the jumps) and a
-// least-squares line with its R² (to show that cost grows linearly with houses or lights).
+// Small statistics for timings, shared by `shadowref bench` and the benchmarks in bench/: the median
+// (timings jump, the mean follows the jumps) and a least-squares line with its R² (to show that
+// cost grows linearly with houses or lights).
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <vector>
 
-namespace shadowref::bench {
+namespace shadowref::timing {
 
 inline double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -41,4 +42,4 @@ inline LineFit fitLine(const std::vector<double>& x, const std::vector<double>& 
   return f;
 }
 
-}  // namespace shadowref::bench
+}  // namespace shadowref::timing

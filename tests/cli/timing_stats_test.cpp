@@ -1,0 +1,35 @@
+// The statistics `shadowref bench` and the benchmarks report timings with, against values worked
+// out by hand.
+#include <catch2/catch.hpp>
+
+#include "cli/timing_stats.h"
+
+using namespace shadowref::timing;
+
+TEST_CASE("median: the middle value, the mean of the middle two, unsorted input", "[timing]") {
+  CHECK(median({7.0}) == 7.0);
+  CHECK(median({3.0, 1.0, 2.0}) == 2.0);
+  CHECK(median({4.0, 1.0, 3.0, 2.0}) == 2.5);
+  // One slow run moves the mean, not the median: what the timings are reported with.
+  CHECK(median({10.0, 10.5, 9.5, 10.0, 90.0}) == 10.0);
+  CHECK(median({}) == 0.0);
+}
+
+TEST_CASE("fitLine: points on a line give its slope and intercept with R2 = 1", "[timing]") {
+  const LineFit f = fitLine({8, 16, 32, 64, 100}, {5, 9, 17, 33, 51});  // y = 0.5 x + 1
+  CHECK(f.slope == Approx(0.5).epsilon(1e-12));
+  CHECK(f.intercept == Approx(1.0).epsilon(1e-12));
+  CHECK(f.r2 == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("fitLine: R2 by hand for scattered points, and the degenerate inputs", "[timing]") {
+  // x = 0 1 2, y = 0 2 1: mean x 1, mean y 1; sxx = 2, sxy = 1, syy = 2; slope 0.5, intercept 0.5,
+  // R2 = sxy^2 / (sxx syy) = 1/4.
+  const LineFit f = fitLine({0, 1, 2}, {0, 2, 1});
+  CHECK(f.slope == Approx(0.5));
+  CHECK(f.intercept == Approx(0.5));
+  CHECK(f.r2 == Approx(0.25));
+  CHECK(fitLine({1}, {1}).r2 == 0.0);          // one point: no line
+  CHECK(fitLine({2, 2}, {1, 3}).r2 == 0.0);    // one x: no slope
+  CHECK(fitLine({1, 2, 3}, {4, 4, 4}).r2 == 1.0);  // flat: every point on the line y = 4
+}
