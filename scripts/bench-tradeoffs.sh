@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The trade, measured (issue 6): builds the bench program bench/tradeoffs against the static
-# libraries of a shadowref build, runs every configuration (a few minutes on an idle 2-core
-# machine), and writes bench/results/tradeoffs.csv, docs/tradeoffs.md and docs/images/tradeoff-*.png.
+# The trade, measured (issue 6): builds the bench program bench/tradeoffs (the target tradeoffs of
+# a shadowref build), runs every configuration (a few minutes on an idle 2-core machine), and
+# writes bench/results/tradeoffs.csv, docs/tradeoffs.md and docs/images/tradeoff-*.png.
 #   bash scripts/setup.sh build && bash scripts/bench-tradeoffs.sh [BUILD_DIR] [tradeoffs options...]
 # Options: --frames N (timed frames, default 5), --threads N (render threads, default 1),
 # --samples N (soft reference rays per pixel, default 256), --only GROUP (counting, soft, houses,
@@ -16,15 +16,12 @@ if [ ! -f "$build/build.ninja" ]; then
   exit 2
 fi
 build=$(cd "$build" && pwd)
-cmake --build "$build" --target shadowref_shadow shadowref_scene shadowref_raster >/dev/null
-cmake -S bench/tradeoffs -B "$build/tradeoffs-bench" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DSHADOWREF_BUILD_DIR="$build" >/dev/null
-cmake --build "$build/tradeoffs-bench" >/dev/null
+cmake --build "$build" --target tradeoffs >/dev/null
 
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 git diff --quiet HEAD -- src bench/tradeoffs tests/support scenes 2>/dev/null || commit="$commit (with uncommitted changes)"
 mkdir -p bench/results docs/images
-"$build/tradeoffs-bench/tradeoffs" --commit "$commit" "$@"
+"$build/bench/tradeoffs" --commit "$commit" "$@"
 
 if ! command -v gnuplot >/dev/null; then
   echo "bench-tradeoffs: gnuplot not found (scripts/setup.sh installs gnuplot-nox); plots not drawn" >&2

@@ -61,7 +61,7 @@ std::vector<Plane> volumeVisibility(const Scene& scene, ShadowMethod method, int
     Plane v(frame.framebuffer.stencil().size(), 0.0f);
     for (size_t k = expanded; k < expanded + count; ++k) {
       if (k >= frame.stencilPerLight.size()) throw std::runtime_error("fewer stencil buffers than lights");
-      const std::vector<uint8_t>& s = frame.stencilPerLight[k];
+      const auto& s = frame.stencilPerLight[k];
       for (size_t i = 0; i < v.size(); ++i) v[i] += s[i] == 0 ? 1.0f : 0.0f;
     }
     for (float& x : v) x /= float(count);
