@@ -24,7 +24,7 @@
 // the time a cache line takes between the cores, measured before every 2-thread run. A run ends
 // with issue 7's targets checked against its own figures (issue_targets.h).
 //
-//   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]
+//   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling | --series]
 //   vs_mesa --agreement [--images DIR]
 #include <algorithm>
 #include <array>
@@ -83,10 +83,13 @@ std::vector<SceneCase> comparedScenes() {
   };
 }
 
-SceneCase cityCase(int houses, int lights) {
+// The city of `houses` houses and `lights` lights; framedHouses > houses puts the camera, the
+// lights and the ground where they are for that many houses (generator.framed_houses).
+SceneCase cityCase(int houses, int lights, int framedHouses = 0) {
   SceneCase c{"city", "scenes/city.yaml",
               {"shadow.method=zfail", "generator.houses=" + std::to_string(houses),
                "generator.lights=" + std::to_string(lights)}};
+  if (framedHouses > houses) c.overrides.push_back("generator.framed_houses=" + std::to_string(framedHouses));
   c.label = "city-h" + std::to_string(houses) + "-l" + std::to_string(lights);
   c.houses = houses;
   c.lights = lights;
@@ -147,8 +150,8 @@ Scene loadCase(const SceneCase& c) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The worker: one configuration, one scene, warm-up frames and `frames` timed frames, each time
-// printed in milliseconds on one line.
+// The worker: one configuration, one scene or several, warm-up frames and `frames` timed frames of
+// each, each time printed in milliseconds on one line.
 
 double cpuMilliseconds() {
   timespec t{};
@@ -158,26 +161,42 @@ double cpuMilliseconds() {
 
 constexpr int kWarmUpFrames = 3;
 
+struct FrameTimes {
+  std::vector<double> wallMs, cpuMs;
+};
+
+// Times one frame of `frame` into `into`.
+template <class Frame>
+void timeFrame(Frame&& frame, FrameTimes& into) {
+  const double cpu0 = cpuMilliseconds();
+  const auto start = std::chrono::steady_clock::now();
+  frame();
+  into.wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  into.cpuMs.push_back(cpuMilliseconds() - cpu0);
+}
+
+void printTimes(const std::string& renderer, const FrameTimes& t) {
+  std::printf("# %s\nW", renderer.c_str());
+  for (double m : t.wallMs) std::printf(" %.4f", m);
+  std::printf("\nC");
+  for (double m : t.cpuMs) std::printf(" %.4f", m);
+  std::printf("\n");
+}
+
+// Warm-up: page in buffers, JIT llvmpipe's shaders, let the allocator's heaps settle. Three frames,
+// every engine alike: shadowref's second and third frames in a fresh process can still be slow
+// (pumpkins at 2 threads 14-19 ms, then 10.5-11), llvmpipe's are not; the bench measures the frame
+// rate of a renderer that keeps rendering.
 int runWorker(const std::string& engine, int threads, int frames, const SceneCase& c) {
   // Mesa keeps its buffers from frame to frame; shadowref allocates them per frame and keeps the
   // freed memory (allocator_tuning.h). Set for both engines, so both run in the same process state.
   keepFreedMemoryForReuse();
   Scene scene = loadCase(c);
   if (engine == "shadowref" && gouraudFromEnvironment()) shadeGouraud(scene);
-  std::vector<double> wallMs, cpuMs;
+  FrameTimes times;
   auto timed = [&](auto&& frame) {
-    // Warm-up: page in buffers, JIT llvmpipe's shaders, let the allocator's heaps settle. Three
-    // frames, every engine alike: shadowref's second and third frames in a fresh process can still
-    // be slow (pumpkins at 2 threads 14-19 ms, then 10.5-11), llvmpipe's are not; the bench
-    // measures the frame rate of a renderer that keeps rendering.
     for (int i = 0; i < kWarmUpFrames; ++i) frame();
-    for (int i = 0; i < frames; ++i) {
-      const double cpu0 = cpuMilliseconds();
-      const auto start = std::chrono::steady_clock::now();
-      frame();
-      wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-      cpuMs.push_back(cpuMilliseconds() - cpu0);
-    }
+    for (int i = 0; i < frames; ++i) timeFrame(frame, times);
   };
   // VS_MESA_SNAPSHOT=file.png: the last frame's colour, to check by eye that both draw the same.
   const char* snapshot = std::getenv("VS_MESA_SNAPSHOT");
@@ -190,19 +209,41 @@ int runWorker(const std::string& engine, int threads, int frames, const SceneCas
       last = renderFrame(scene, options);
     });
     if (snapshot) writePng(last->framebuffer, snapshot);
-    std::printf("# shadowref %d threads\n", threads);
+    printTimes("shadowref " + std::to_string(threads) + " threads", times);
   } else {
     const MesaLighting lighting = lightingFromEnvironment();
     MesaFrameRenderer mesa(scene, scene.shadow.method, lighting);
     timed([&] { mesa.render(); });
     if (snapshot) writePng(mesa.readColor(), snapshot);
-    std::printf("# %s\n", conformance::mesaRenderer().c_str());  // the lighting is in the engine's name
+    printTimes(conformance::mesaRenderer(), times);  // the lighting is in the engine's name
   }
-  std::printf("W");
-  for (double m : wallMs) std::printf(" %.4f", m);
-  std::printf("\nC");
-  for (double m : cpuMs) std::printf(" %.4f", m);
-  std::printf("\n");
+  return 0;
+}
+
+// A series' points in one shadowref process, their frames interleaved: frame f of every point,
+// point after point (each cycle from the next point on), then frame f + 1. The host here changes
+// speed by about 1.5x within seconds; one cycle of the points takes a tenth of a second or so, so
+// every point's frames meet the host's speeds in about the same shares, and the points' times keep
+// their proportions however the host goes (measured a process per point, a point whose runs all
+// met the slower speed stood 1.5x off the others' line). Prints each point's times in order.
+int runSeriesWorker(int threads, int frames, const std::vector<SceneCase>& cases) {
+  keepFreedMemoryForReuse();
+  std::vector<Scene> scenes;
+  for (const SceneCase& c : cases) {
+    scenes.push_back(loadCase(c));
+    if (gouraudFromEnvironment()) shadeGouraud(scenes.back());
+  }
+  FrameOptions options;
+  options.threads = threads;
+  for (const Scene& scene : scenes)
+    for (int w = 0; w < kWarmUpFrames; ++w) renderFrame(scene, options);
+  std::vector<FrameTimes> times(scenes.size());
+  for (int f = 0; f < frames; ++f)
+    for (size_t j = 0; j < scenes.size(); ++j) {
+      const size_t i = (size_t(f) + j) % scenes.size();
+      timeFrame([&] { renderFrame(scenes[i], options); }, times[i]);
+    }
+  for (const FrameTimes& t : times) printTimes("shadowref " + std::to_string(threads) + " threads", t);
   return 0;
 }
 
@@ -242,6 +283,17 @@ std::string workerCommand(const Config& cfg, int frames, const SceneCase& c) {
   return cmd;
 }
 
+// A series' points in one shadowref process (runSeriesWorker).
+std::string seriesWorkerCommand(const Config& cfg, int frames, const std::vector<SceneCase>& cases) {
+  std::string cmd = cfg.lighting == MesaLighting::FixedFunction ? "VS_SHADOWREF_SHADING=gouraud " : "VS_SHADOWREF_SHADING=scene ";
+  cmd += quoted(selfPath()) + " --series-worker " + std::to_string(cfg.threads) + " " + std::to_string(frames);
+  for (const SceneCase& c : cases) {
+    cmd += " --case " + quoted(c.file);
+    for (const std::string& o : c.overrides) cmd += " " + quoted(o);
+  }
+  return cmd;
+}
+
 FILE* startWorker(const std::string& cmd) {
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) throw std::runtime_error("popen failed: " + cmd);
@@ -257,21 +309,30 @@ std::string workerOutput(FILE* pipe, const std::string& cmd) {
   return out;
 }
 
-RunResult parseWorker(const std::string& out, const std::string& cmd) {
-  RunResult r;
+// A worker's runs, one a scene: each starts at its "# renderer" line.
+std::vector<RunResult> parseWorkerRuns(const std::string& out, const std::string& cmd) {
+  std::vector<RunResult> runs;
   std::istringstream lines(out);
   std::string line;
   while (std::getline(lines, line)) {
     if (line.rfind("# ", 0) == 0) {
-      r.renderer = line.substr(2);
+      runs.emplace_back().renderer = line.substr(2);
       continue;
     }
-    std::istringstream values(line.size() > 1 ? line.substr(1) : std::string());
-    std::vector<double>& into = line[0] == 'C' ? r.cpuMs : r.frameMs;
+    if (runs.empty() || line.empty()) throw std::runtime_error("worker printed times before its renderer: " + cmd);
+    std::istringstream values(line.substr(1));
+    std::vector<double>& into = line[0] == 'C' ? runs.back().cpuMs : runs.back().frameMs;
     for (double v; values >> v;) into.push_back(v);
   }
-  if (r.frameMs.empty()) throw std::runtime_error("worker printed no times: " + cmd);
-  return r;
+  for (const RunResult& r : runs)
+    if (r.frameMs.empty()) throw std::runtime_error("worker printed no times: " + cmd);
+  return runs;
+}
+
+RunResult parseWorker(const std::string& out, const std::string& cmd) {
+  std::vector<RunResult> runs = parseWorkerRuns(out, cmd);
+  if (runs.size() != 1) throw std::runtime_error("worker printed " + std::to_string(runs.size()) + " runs, not 1: " + cmd);
+  return runs.front();
 }
 
 RunResult runChild(const Config& cfg, int frames, const SceneCase& c) {
@@ -343,6 +404,12 @@ struct Measured {
   std::vector<double> cpuRunMedians;
   std::vector<double> crossCore;  // crossCoreNs() right before each run (shadowref's 2-thread runs)
   std::string renderer;
+  // A series' point measured with the others in one process (measureSeriesRun): in each cycle of
+  // the points' frames, this point's share of the cycle's time, and the cycles' times (wall, CPU).
+  std::vector<double> shares, cpuShares, cycles, cpuCycles;
+  // Its time at the run's typical speed: its median share of a cycle times the median cycle.
+  double seriesMs() const { return timing::typicalTime(shares, cycles); }
+  double seriesCpuMs() const { return timing::typicalTime(cpuShares, cpuCycles); }
   double median() const { return timing::median(runMedians); }
   double cpuMedian() const { return timing::median(cpuRunMedians); }
   double min() const { return *std::min_element(runMedians.begin(), runMedians.end()); }
@@ -351,6 +418,9 @@ struct Measured {
     runMedians.insert(runMedians.end(), more.runMedians.begin(), more.runMedians.end());
     cpuRunMedians.insert(cpuRunMedians.end(), more.cpuRunMedians.begin(), more.cpuRunMedians.end());
     crossCore.insert(crossCore.end(), more.crossCore.begin(), more.crossCore.end());
+    for (auto [to, from] : {std::pair{&shares, &more.shares}, {&cpuShares, &more.cpuShares}, {&cycles, &more.cycles},
+                            {&cpuCycles, &more.cpuCycles}})
+      to->insert(to->end(), from->begin(), from->end());
     renderer = more.renderer;
   }
   double max() const { return *std::max_element(runMedians.begin(), runMedians.end()); }
@@ -363,6 +433,7 @@ struct Settings {
   bool scaling = true;
   bool quick = false;
   bool agreement = false;  // --agreement: the agreement table only, no timing
+  bool seriesOnly = false; // --series: the houses and lights series only
   std::string imageDir;    // --images DIR: the agreement's frames as PNG
 };
 
@@ -658,6 +729,77 @@ std::vector<std::vector<Measured>> measureInRounds(const std::vector<SceneCase>&
   return m;
 }
 
+// One run of each point of a series in one shadowref process (runSeriesWorker): a Measured per point.
+std::vector<Measured> measureSeriesRun(const std::vector<SceneCase>& cases, const Config& cfg, const Settings& s) {
+  std::vector<Measured> m(cases.size());
+  const double crossCore = cfg.threads == 2 ? crossCoreNs() : 0.0;
+  const std::string cmd = seriesWorkerCommand(cfg, s.frames, cases);
+  const std::vector<RunResult> runs = parseWorkerRuns(workerOutput(startWorker(cmd), cmd), cmd);
+  if (runs.size() != cases.size()) throw std::runtime_error("series worker printed " + std::to_string(runs.size()) + " runs: " + cmd);
+  for (size_t i = 0; i < cases.size(); ++i) {
+    m[i].runMedians.push_back(median(runs[i].frameMs));
+    m[i].cpuRunMedians.push_back(median(runs[i].cpuMs));
+    m[i].renderer = runs[i].renderer;
+    if (cfg.threads == 2) m[i].crossCore.push_back(crossCore);
+  }
+  // Frame f of every point makes cycle f (runSeriesWorker): a tenth of a second or so, in which the
+  // host's speed seldom changes, so a point's share of it is its share of the work.
+  auto addShares = [&](std::vector<double> RunResult::*times, std::vector<double> Measured::*shares,
+                       std::vector<double> Measured::*cycles) {
+    std::vector<std::vector<double>> t;
+    for (const RunResult& r : runs) t.push_back(r.*times);
+    const timing::CycleShares c = timing::cycleShares(t);
+    for (size_t i = 0; i < cases.size(); ++i) {
+      (m[i].*shares).insert((m[i].*shares).end(), c.shares[i].begin(), c.shares[i].end());
+      (m[i].*cycles).insert((m[i].*cycles).end(), c.cycles.begin(), c.cycles.end());
+    }
+  };
+  addShares(&RunResult::frameMs, &Measured::shares, &Measured::cycles);
+  addShares(&RunResult::cpuMs, &Measured::cpuShares, &Measured::cpuCycles);
+  return m;
+}
+
+// A series' points round by round: each round shadowref's configurations each in one process that
+// interleaves the points' frames (measureSeriesRun), and Mesa's a process per point and
+// configuration as in measureInRounds (Mesa's driver and its threads are set per process, and its
+// figures here are for comparison only) — shadowref first in even rounds, Mesa first in odd ones.
+std::vector<std::vector<Measured>> measureSeries(const std::vector<SceneCase>& cases, const std::vector<Config>& configs,
+                                                 const Settings& s, const Settings& mesaSettings) {
+  std::vector<std::vector<Measured>> m(cases.size(), std::vector<Measured>(configs.size()));
+  std::vector<size_t> ours, mesa;
+  for (size_t k = 0; k < configs.size(); ++k) (configs[k].engine == Engine::Shadowref ? ours : mesa).push_back(k);
+  std::vector<Config> mesaConfigs;
+  for (size_t k : mesa) mesaConfigs.push_back(configs[k]);
+  const size_t n = cases.size();
+  for (int round = 0; round < s.rounds; ++round) {
+    auto runOurs = [&] {
+      for (size_t j = 0; j < ours.size(); ++j) {
+        const size_t k = ours[round % 2 == 0 ? j : ours.size() - 1 - j];
+        const std::vector<Measured> r = measureSeriesRun(cases, configs[k], s);
+        for (size_t i = 0; i < n; ++i) m[i][k].add(r[i]);
+      }
+      std::fprintf(stderr, ":");
+    };
+    auto runMesa = [&] {
+      if (mesaConfigs.empty()) return;
+      const size_t start = size_t(round) * n / size_t(s.rounds);
+      for (size_t j = 0; j < n; ++j) {
+        const size_t i = (start + j) % n;
+        const std::vector<Measured> r = measureRound(cases[i], mesaConfigs, mesaSettings, round);
+        for (size_t q = 0; q < mesa.size(); ++q) m[i][mesa[q]].add(r[q]);
+      }
+    };
+    if (round % 2 == 0) {
+      runOurs();
+      runMesa();
+    } else {
+      runMesa();
+      runOurs();
+    }
+  }
+  return m;
+}
+
 // The compared scenes' tables; returns every configuration's figures, per scene in comparedConfigs' order.
 std::vector<std::vector<Measured>> compareScenes(const Settings& s, std::ofstream& csv) {
   const std::vector<Config> configs = comparedConfigs();
@@ -719,10 +861,8 @@ ScalingFits scaling(const Settings& s, std::ofstream& csv) {
   const MesaLighting pp = MesaLighting::PerPixel;
   const std::vector<Config> configs = {{Engine::Shadowref, 1, pp}, {Engine::Shadowref, 2, pp}, {Engine::Llvmpipe, 1},
                                        {Engine::Llvmpipe, 1, pp}};
-  // Every round, fewer frames a run: a point's figure is its fastest run, and the host's slow
-  // stretches (a minute or more here) can cover all of a point's runs when there are only three
-  // (run AE: 48-80 houses each 1.3-1.5x its neighbours' line in all three). Five rounds take about
-  // two minutes more than three.
+  // Mesa's runs, a process per point, take fewer frames (its figures here are for comparison);
+  // shadowref's, all points in one process, the full number, which costs a second or two a round.
   Settings fewer = s;
   fewer.frames = std::max(1, s.frames / 2 + 1);
   struct Series {
@@ -731,9 +871,15 @@ ScalingFits scaling(const Settings& s, std::ofstream& csv) {
     std::vector<double> x;
   };
   std::vector<Series> series(2);
-  series[0] = {"Houses (city, z-fail, 1 light)", "houses", {}, {}};
-  for (int h : s.quick ? std::vector<int>{8, 32, 100} : std::vector<int>{8, 16, 32, 48, 64, 80, 100}) {
-    series[0].cases.push_back(cityCase(h, 1));
+  series[0] = {"Houses (city, z-fail, 1 light, camera and light as for 100 houses)", "houses", {}, {}};
+  const std::vector<int> houses = s.quick ? std::vector<int>{8, 32, 100} : std::vector<int>{8, 16, 32, 48, 64, 80, 100};
+  for (int h : houses) {
+    // Only the houses change from point to point: the camera, the light and the ground stay those
+    // of the largest city. Framed for each city in turn, the camera backs away as the city grows
+    // and each house covers fewer pixels (8 houses fill half the view of 16): then the work per
+    // house is not the same from point to point, whatever the renderer (frame_profile under
+    // callgrind, instructions a frame: R2 0.981 framed for each city, 0.990 framed for 100).
+    series[0].cases.push_back(cityCase(h, 1, houses.back()));
     series[0].x.push_back(h);
   }
   series[1] = {"Lights (city-64, z-fail)", "lights", {}, {}};
@@ -742,21 +888,31 @@ ScalingFits scaling(const Settings& s, std::ofstream& csv) {
     series[1].x.push_back(l);
   }
   for (const Series& ser : series) {
-    // The fastest run of each point: the host only ever adds time, so the fastest of a point's
-    // runs is the one least slowed (the CSV keeps the median and the slowest too).
-    std::printf("\n%s: ms per frame, the fastest of %d runs of %d frames (each round runs every point\n"
-                "once, each round from another point on)\n",
-                ser.title.c_str(), fewer.rounds, fewer.frames);
+    // shadowref: every point's frames interleaved in one process, so the host's changes of speed
+    // fall on all points alike and each point's share of a cycle of them is its share of the work.
+    // Mesa, a process per point: the fastest of a point's runs, the one the host slowed least
+    // (the CSV keeps the median and the slowest too).
+    std::printf("\n%s: ms per frame.\n"
+                "shadowref: %d runs, each a process rendering every point's frames in turn, %d cycles of one frame\n"
+                "a point; a point's figure is its median share of a cycle times the median cycle. Mesa: the fastest\n"
+                "of %d runs of %d frames, a process per point.\n",
+                ser.title.c_str(), s.rounds, s.frames, fewer.rounds, fewer.frames);
     std::printf("%8s %9s %9s %9s %9s   %3s %9s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "llpp-1t",
                 "", "sr-1t", "sr-2t", "llvm-1t", "llpp-1t");
     std::vector<std::vector<double>> y(configs.size()), yCpu(configs.size());
-    const std::vector<std::vector<Measured>> all = measureInRounds(ser.cases, configs, fewer);
+    const std::vector<std::vector<Measured>> all = measureSeries(ser.cases, configs, s, fewer);
     for (size_t i = 0; i < ser.cases.size(); ++i) {
       const std::vector<Measured>& m = all[i];
       for (size_t k = 0; k < configs.size(); ++k) {
         csvRow(csv, ser.axis, ser.cases[i], configs[k], m[k]);
-        y[k].push_back(m[k].min());
-        yCpu[k].push_back(m[k].cpuMin());
+        const bool interleaved = configs[k].engine == Engine::Shadowref;
+        if (interleaved)  // the figure the line is fitted to (the row above: the runs' medians)
+          csv << ser.axis << "-share," << ser.cases[i].label << ',' << ser.cases[i].houses << ',' << ser.cases[i].lights
+              << ',' << configs[k].engineName() << ',' << configs[k].threads << ',' << m[k].shares.size() << ','
+              << m[k].seriesMs() << ",,," << m[k].seriesCpuMs()
+              << ",\"median share of a cycle of every point's frames x the median cycle\"\n";
+        y[k].push_back(interleaved ? m[k].seriesMs() : m[k].min());
+        yCpu[k].push_back(interleaved ? m[k].seriesCpuMs() : m[k].cpuMin());
       }
       std::printf("\r%8g %9.2f %9.2f %9.2f %9.2f   cpu %9.2f %9.2f %9.2f %9.2f\n", ser.x[i], y[0].back(), y[1].back(),
                   y[2].back(), y[3].back(), yCpu[0].back(), yCpu[1].back(), yCpu[2].back(), yCpu[3].back());
@@ -919,6 +1075,13 @@ int runDriver(const Settings& s) {
   csv << "probe,before,0,0,machine,2,1," << before.parallelism << ",,," << before.cpuShare << ",\"parallelism; cpu share\"\n";
   printCoreSpeeds("", csv);
   printCrossCore("", csv);
+  if (s.seriesOnly) {
+    const ScalingFits f = scaling(s, csv);
+    std::printf("\nR2 of the lines, shadowref: houses %.3f (1 thread) %.3f (2 threads), lights %.3f %.3f (issue 7: %.2f)\n",
+                f.houses1, f.houses2, f.lights1, f.lights2, kLinearR2);
+    std::printf("\nCSV: %s\n", s.csvPath.c_str());
+    return 0;
+  }
   const std::vector<std::vector<Measured>> compared = compareScenes(s, csv);
   const std::vector<bool> identical = checkDeterminism(comparedScenes(), csv);
   std::optional<ScalingFits> fits;
@@ -947,6 +1110,15 @@ int main(int argc, char** argv) {
       for (int i = 6; i < argc; ++i) c.overrides.push_back(argv[i]);
       return runWorker(argv[2], std::atoi(argv[3]), std::atoi(argv[4]), c);
     }
+    if (argc >= 6 && std::strcmp(argv[1], "--series-worker") == 0) {  // THREADS FRAMES (--case FILE OVERRIDE...)...
+      std::vector<SceneCase> cases;
+      for (int i = 4; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--case") == 0 && i + 1 < argc) cases.push_back({"worker", argv[++i], {}});
+        else if (!cases.empty()) cases.back().overrides.push_back(argv[i]);
+        else throw std::runtime_error("--series-worker: --case FILE first");
+      }
+      return runSeriesWorker(std::atoi(argv[2]), std::atoi(argv[3]), cases);
+    }
     Settings s;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -959,10 +1131,11 @@ int main(int argc, char** argv) {
       else if (a == "--csv") s.csvPath = next();
       else if (a == "--no-scaling") s.scaling = false;
       else if (a == "--quick") s.quick = true;
+      else if (a == "--series") s.seriesOnly = true;
       else if (a == "--agreement") s.agreement = true;
       else if (a == "--images") s.imageDir = next();
       else {
-        std::fprintf(stderr, "usage: vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling]\n"
+        std::fprintf(stderr, "usage: vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling | --series]\n"
                              "       vs_mesa --agreement [--images DIR]\n");
         return 2;
       }

@@ -1,10 +1,12 @@
 // Small statistics for timings, shared by `shadowref bench` and the benchmarks in bench/: the median
-// (timings jump, the mean follows the jumps) and a least-squares line with its R² (to show that
-// cost grows linearly with houses or lights).
+// (timings jump, the mean follows the jumps), a least-squares line with its R² (to show that cost
+// grows linearly with houses or lights), and the shares of interleaved frames (for those lines on a
+// host whose speed changes).
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
+#include <stdexcept>
 #include <vector>
 
 namespace shadowref::timing {
@@ -40,6 +42,35 @@ inline LineFit fitLine(const std::vector<double>& x, const std::vector<double>& 
   f.intercept = my - f.slope * mx;
   f.r2 = syy == 0.0 ? 1.0 : (sxy * sxy) / (sxx * syy);
   return f;
+}
+
+// Several scenes' frames timed in turn, frame f of each in cycle f: times[i][f]. Each cycle is short
+// beside the host's changes of speed, so a speed that changes from cycle to cycle multiplies every
+// time of a cycle alike and leaves each scene's share of it as it is.
+struct CycleShares {
+  std::vector<std::vector<double>> shares;  // shares[i][f] = times[i][f] / cycles[f]
+  std::vector<double> cycles;               // the cycles' times: the sum over the scenes
+};
+
+inline CycleShares cycleShares(const std::vector<std::vector<double>>& times) {
+  CycleShares c;
+  if (times.empty()) return c;
+  const size_t frames = times.front().size();
+  for (const std::vector<double>& t : times)
+    if (t.size() != frames) throw std::invalid_argument("cycleShares: every scene needs one time a cycle");
+  c.cycles.assign(frames, 0.0);
+  for (const std::vector<double>& t : times)
+    for (size_t f = 0; f < frames; ++f) c.cycles[f] += t[f];
+  for (const std::vector<double>& t : times) {
+    std::vector<double>& s = c.shares.emplace_back();
+    for (size_t f = 0; f < frames; ++f) s.push_back(c.cycles[f] > 0.0 ? t[f] / c.cycles[f] : 0.0);
+  }
+  return c;
+}
+
+// A scene's time at a typical speed: its median share of a cycle times the median cycle.
+inline double typicalTime(const std::vector<double>& shares, const std::vector<double>& cycles) {
+  return median(shares) * median(cycles);
 }
 
 }  // namespace shadowref::timing

@@ -59,6 +59,24 @@ std::array<HouseModel, kCityModelCount> makeHouseModels(SceneBuilder& b) {
   return models;
 }
 
+constexpr double kLot = 12.0, kBlockPitch = 2.0 * kLot + 12.0;
+
+// The square grid of blocks that holds `houses`, and its extent.
+struct BlockGrid {
+  int blocks = 0, perRow = 1;
+  double extentX = 0.0, extentZ = 0.0;
+};
+
+BlockGrid blockGrid(int houses) {
+  BlockGrid g;
+  g.blocks = (houses + 3) / 4;
+  g.perRow = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(g.blocks)))));
+  const int rows = (g.blocks + g.perRow - 1) / g.perRow;
+  g.extentX = g.perRow * kBlockPitch;
+  g.extentZ = std::max(1, rows) * kBlockPitch;
+  return g;
+}
+
 }  // namespace
 
 void addCity(Scene& scene, const CityOptions& o) {
@@ -72,21 +90,21 @@ void addCity(Scene& scene, const CityOptions& o) {
   mat.ground = b.material(material("asphalt", {0.35, 0.35, 0.37}));
   const std::array<HouseModel, kCityModelCount> models = makeHouseModels(b);
 
-  // Blocks of 2 x 2 lots, the blocks on a square grid with streets between them.
+  // Blocks of 2 x 2 lots, the blocks on a square grid with streets between them, centred on the
+  // origin; the ground, the camera and the lights are placed for the grid of framedHouses.
   const int houses = std::max(0, o.houses);
-  const int blocks = (houses + 3) / 4;
-  const int perRow = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(blocks)))));
-  const int rows = (blocks + perRow - 1) / perRow;
-  const double lot = 12.0, blockPitch = 2.0 * lot + 12.0;
-  const double extentX = perRow * blockPitch, extentZ = std::max(1, rows) * blockPitch;
+  const BlockGrid grid = blockGrid(houses);
+  const BlockGrid framed = blockGrid(std::max(houses, o.framedHouses));
+  const int blocks = grid.blocks, perRow = grid.perRow;
+  const double extentX = grid.extentX, extentZ = grid.extentZ;
 
   Node city = SceneBuilder::group("city");
   city.children.push_back(SceneBuilder::node(
       "ground",
-      b.mesh(makePlane({extentX + 2.0 * lot, extentZ + 2.0 * lot}, 0.5), "city_ground"), mat.ground));
+      b.mesh(makePlane({framed.extentX + 2.0 * kLot, framed.extentZ + 2.0 * kLot}, 0.5), "city_ground"), mat.ground));
   for (int k = 0; k < blocks; ++k) {
-    const glm::dvec3 blockCentre((k % perRow + 0.5) * blockPitch - 0.5 * extentX, 0.0,
-                                 (k / perRow + 0.5) * blockPitch - 0.5 * extentZ);
+    const glm::dvec3 blockCentre((k % perRow + 0.5) * kBlockPitch - 0.5 * extentX, 0.0,
+                                 (k / perRow + 0.5) * kBlockPitch - 0.5 * extentZ);
     Node block = SceneBuilder::group("block" + std::to_string(k), translation(blockCentre));
     for (int h = 0; h < 4 && 4 * k + h < houses; ++h) {
       const int index = 4 * k + h;
@@ -94,7 +112,7 @@ void addCity(Scene& scene, const CityOptions& o) {
                                        : std::clamp(o.model, 0, kCityModelCount - 1);
       const int turns = o.randomModels ? random.below(4) : 0;
       const int wall = o.randomModels ? random.below(3) : 0;
-      const glm::dvec3 lotCentre((h % 2 - 0.5) * lot, 0.0, (h / 2 - 0.5) * lot);
+      const glm::dvec3 lotCentre((h % 2 - 0.5) * kLot, 0.0, (h / 2 - 0.5) * kLot);
       Node house = SceneBuilder::group("house" + std::to_string(index), translation(lotCentre) * quarterTurnsY(turns));
       const HouseModel& m = models[model];
       for (size_t p = 0; p < m.parts.size(); ++p)
@@ -111,12 +129,12 @@ void addCity(Scene& scene, const CityOptions& o) {
   // second test adds lights), their intensities sharing 1 so the picture keeps its brightness.
   const int lights = std::max(1, o.lights);
   const int lightsPerRow = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(lights))));
-  const double height = 40.0 + 0.5 * std::max(extentX, extentZ);
+  const double span = 0.5 * std::max(framed.extentX, framed.extentZ);
+  const double height = 40.0 + span;
   for (int i = 0; i < lights; ++i) {
     Light light;
     light.name = "sun" + std::to_string(i);
     light.type = LightType::Point;
-    const double span = 0.5 * std::max(extentX, extentZ);
     const double u = lightsPerRow == 1 ? 0.0 : (i % lightsPerRow) / double(lightsPerRow - 1) - 0.5;
     const double v = lightsPerRow == 1 ? 0.0 : (i / lightsPerRow) / double(lightsPerRow - 1) - 0.5;
     light.position = {0.3 * span + u * span, height, 0.2 * span + v * span};
@@ -128,7 +146,7 @@ void addCity(Scene& scene, const CityOptions& o) {
     scene.width = 800;
     scene.height = 640;
     scene.ambient = glm::dvec3(0.2);
-    const double r = 0.5 * std::max(extentX, extentZ);
+    const double r = span;
     scene.camera.eye = {-0.9 * r - 10.0, 0.6 * r + 12.0, 1.3 * r + 15.0};
     scene.camera.target = {0.0, 0.0, 0.0};
     scene.camera.up = {0.0, 1.0, 0.0};

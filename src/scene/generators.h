@@ -39,6 +39,9 @@ struct CityOptions {
   int model = 0;  // the model of every house when !randomModels (0 .. kCityModelCount-1)
   uint32_t seed = 1;
   int lights = 1;
+  // The camera, the lights and the ground as for a city of this many houses (at least `houses`;
+  // 0: `houses`), so that a series over the number of houses changes only the houses.
+  int framedHouses = 0;
   bool setView = true;
 };
 inline constexpr int kCityModelCount = 4;

@@ -85,6 +85,9 @@ const std::vector<Field<CityOptions>>& cityFields() {
       {"lights", [](const YamlValue& v, CityOptions& o, const std::string& p, Provenance&) {
          o.lights = readInt(v, p, 1, kMaxCityLights);
        }},
+      {"framed_houses", [](const YamlValue& v, CityOptions& o, const std::string& p, Provenance&) {
+         o.framedHouses = readInt(v, p, 0, kMaxHouses);
+       }},
       setView(&CityOptions::setView),
   };
   return fields;

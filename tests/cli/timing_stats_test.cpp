@@ -33,3 +33,35 @@ TEST_CASE("fitLine: R2 by hand for scattered points, and the degenerate inputs",
   CHECK(fitLine({2, 2}, {1, 3}).r2 == 0.0);    // one x: no slope
   CHECK(fitLine({1, 2, 3}, {4, 4, 4}).r2 == 1.0);  // flat: every point on the line y = 4
 }
+
+TEST_CASE("cycleShares: a speed that changes from cycle to cycle leaves the shares as they are", "[timing]") {
+  // Three scenes of work 1, 2 and 5 (ms at full speed) in five cycles, the host at full speed, 1.5x
+  // slower, full, 1.5x slower, 3x slower: every cycle's shares are 1/8, 2/8, 5/8.
+  const std::vector<double> slowdown{1.0, 1.5, 1.0, 1.5, 3.0}, work{1.0, 2.0, 5.0};
+  std::vector<std::vector<double>> times(3);
+  for (size_t i = 0; i < 3; ++i)
+    for (double s : slowdown) times[i].push_back(work[i] * s);
+  const CycleShares c = cycleShares(times);
+  REQUIRE(c.cycles.size() == 5);
+  CHECK(c.cycles[0] == 8.0);
+  CHECK(c.cycles[1] == 12.0);
+  CHECK(c.cycles[4] == 24.0);
+  for (size_t i = 0; i < 3; ++i)
+    for (double share : c.shares[i]) CHECK(share == Approx(work[i] / 8.0).epsilon(1e-15));
+  // The median cycle is 12 ms (8 8 12 12 24): the scenes at the 1.5x speed, in proportion.
+  CHECK(typicalTime(c.shares[0], c.cycles) == Approx(1.5));
+  CHECK(typicalTime(c.shares[2], c.cycles) == Approx(7.5));
+}
+
+TEST_CASE("cycleShares: one slow frame moves one cycle, not the median share", "[timing]") {
+  // Work 2 and 2; in cycle 2 the first scene alone is slowed 4x (a hiccup): its share there is 8/10.
+  const CycleShares c = cycleShares({{2, 2, 8, 2, 2}, {2, 2, 2, 2, 2}});
+  CHECK(c.shares[0][2] == Approx(0.8));
+  CHECK(typicalTime(c.shares[0], c.cycles) == Approx(2.0));  // median share 1/2 x median cycle 4
+  CHECK(typicalTime(c.shares[1], c.cycles) == Approx(2.0));
+}
+
+TEST_CASE("cycleShares: no scenes, and scenes with different numbers of cycles", "[timing]") {
+  CHECK(cycleShares({}).cycles.empty());
+  CHECK_THROWS_AS(cycleShares({{1, 2}, {1}}), std::invalid_argument);
+}

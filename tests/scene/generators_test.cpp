@@ -220,6 +220,50 @@ TEST_CASE("city with several lights places them all above the city, sharing the 
   CHECK(spots.size() == 9);
 }
 
+TEST_CASE("city framed for more houses: the houses of its own count, the view, lights and ground of the larger city", "[mesh]") {
+  auto build = [](int houses, int framed) {
+    Scene s;
+    CityOptions o;
+    o.houses = houses;
+    o.framedHouses = framed;
+    o.lights = 4;
+    addCity(s, o);
+    return s;
+  };
+  auto ground = [](const Scene& s) { return s.instances().front().worldBounds; };
+  auto housesOnly = [](const Scene& s) {
+    std::vector<Instance> out;
+    for (const Instance& i : s.instances())
+      if (i.path != "city/ground") out.push_back(i);
+    return out;
+  };
+  const Scene small = build(8, 0), framed = build(8, 100), large = build(100, 0);
+  REQUIRE(framed.instances().front().path == "city/ground");
+  // The camera, the lights and the ground are those made for 100 houses ...
+  CHECK(framed.camera.eye == large.camera.eye);
+  CHECK(framed.camera.target == large.camera.target);
+  REQUIRE(framed.lights.size() == large.lights.size());
+  for (size_t i = 0; i < framed.lights.size(); ++i) CHECK(framed.lights[i].position == large.lights[i].position);
+  CHECK(ground(framed).min == ground(large).min);
+  CHECK(ground(framed).max == ground(large).max);
+  CHECK(framed.camera.eye != small.camera.eye);
+  // ... the houses those of 8: the same models at the same places.
+  const std::vector<Instance> a = housesOnly(framed), b = housesOnly(small);
+  REQUIRE(a.size() == b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    CHECK(a[i].path == b[i].path);
+    CHECK(a[i].mesh->name == b[i].mesh->name);
+    CHECK(a[i].world == b[i].world);
+  }
+  // Framed for as many houses or fewer: the city as without it.
+  for (int f : {8, 4, 1}) {
+    const Scene same = build(8, f);
+    CHECK(same.camera.eye == small.camera.eye);
+    CHECK(same.lights[0].position == small.lights[0].position);
+    CHECK(ground(same).max == ground(small).max);
+  }
+}
+
 TEST_CASE("outdoor: closed meshes, N trees, low directional light, finite far plane", "[mesh]") {
   Scene scene;
   OutdoorOptions o;

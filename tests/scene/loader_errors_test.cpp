@@ -210,6 +210,8 @@ TEST_CASE("values outside their range are errors at the value", "[loader]") {
   CHECK_THAT(errorOf("shadow: {map_size: 100000}\n"), StartsWith("t.yaml:1:20: shadow.map_size: 100000 is outside the allowed range"));
   CHECK_THAT(errorOf("shadow: {focus_region: 1}\n"), StartsWith("t.yaml:1:24: shadow.focus_region:"));
   CHECK_THAT(errorOf("generator: {type: city, houses: 0}\n"), StartsWith("t.yaml:1:33: generator.houses: 0 is outside the allowed range"));
+  CHECK_THAT(errorOf("generator: {type: city, framed_houses: -1}\n"),
+             StartsWith("t.yaml:1:40: generator.framed_houses: -1 is outside the allowed range [0, 4096]"));
 }
 
 TEST_CASE("a file that is not one map of sections is an error", "[loader]") {

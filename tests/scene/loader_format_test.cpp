@@ -191,6 +191,11 @@ TEST_CASE("an override of generator.* with -D changes the generator's options be
   CHECK(eight.instances().size() < sixteen.instances().size());
   const Scene again = load("generator: {type: city, houses: 8}\n");
   CHECK(again.instances().size() == eight.instances().size());
+  const Scene framed = load("generator: {type: city, houses: 8}\n", {"generator.framed_houses=100"});
+  const Scene hundred = load("generator: city\n", {"generator.houses=100"});
+  CHECK(framed.instances().size() == eight.instances().size());
+  CHECK(framed.camera.eye == hundred.camera.eye);
+  CHECK(framed.camera.eye != eight.camera.eye);
 }
 
 TEST_CASE("describeScene lists nodes, meshes with topology, lights, bounds and the method", "[loader]") {
