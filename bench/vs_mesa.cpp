@@ -407,9 +407,9 @@ struct Measured {
   // A series' point measured with the others in one process (measureSeriesRun): in each cycle of
   // the points' frames, this point's share of the cycle's time, and the cycles' times (wall, CPU).
   std::vector<double> shares, cpuShares, cycles, cpuCycles;
-  // Its time at the run's typical speed: its median share of a cycle times the median cycle.
-  double seriesMs() const { return timing::typicalTime(shares, cycles); }
-  double seriesCpuMs() const { return timing::typicalTime(cpuShares, cpuCycles); }
+  // Its time in the fastest cycle: its median share of a cycle times that cycle (fastestCycleTime).
+  double seriesMs() const { return timing::fastestCycleTime(shares, cycles); }
+  double seriesCpuMs() const { return timing::fastestCycleTime(cpuShares, cpuCycles); }
   double median() const { return timing::median(runMedians); }
   double cpuMedian() const { return timing::median(cpuRunMedians); }
   double min() const { return *std::min_element(runMedians.begin(), runMedians.end()); }
@@ -894,7 +894,7 @@ ScalingFits scaling(const Settings& s, std::ofstream& csv) {
     // (the CSV keeps the median and the slowest too).
     std::printf("\n%s: ms per frame.\n"
                 "shadowref: %d runs, each a process rendering every point's frames in turn, %d cycles of one frame\n"
-                "a point; a point's figure is its median share of a cycle times the median cycle. Mesa: the fastest\n"
+                "a point; a point's figure is its median share of a cycle times the fastest cycle. Mesa: the fastest\n"
                 "of %d runs of %d frames, a process per point.\n",
                 ser.title.c_str(), s.rounds, s.frames, fewer.rounds, fewer.frames);
     std::printf("%8s %9s %9s %9s %9s   %3s %9s %9s %9s %9s\n", ser.axis.c_str(), "sr-1t", "sr-2t", "llvm-1t", "llpp-1t",
@@ -910,7 +910,7 @@ ScalingFits scaling(const Settings& s, std::ofstream& csv) {
           csv << ser.axis << "-share," << ser.cases[i].label << ',' << ser.cases[i].houses << ',' << ser.cases[i].lights
               << ',' << configs[k].engineName() << ',' << configs[k].threads << ',' << m[k].shares.size() << ','
               << m[k].seriesMs() << ",,," << m[k].seriesCpuMs()
-              << ",\"median share of a cycle of every point's frames x the median cycle\"\n";
+              << ",\"median share of a cycle of every point's frames x the fastest cycle\"\n";
         y[k].push_back(interleaved ? m[k].seriesMs() : m[k].min());
         yCpu[k].push_back(interleaved ? m[k].seriesCpuMs() : m[k].cpuMin());
       }

@@ -68,9 +68,11 @@ inline CycleShares cycleShares(const std::vector<std::vector<double>>& times) {
   return c;
 }
 
-// A scene's time at a typical speed: its median share of a cycle times the median cycle.
-inline double typicalTime(const std::vector<double>& shares, const std::vector<double>& cycles) {
-  return median(shares) * median(cycles);
+// A scene's time in the fastest cycle, the one the host slowed least (it only ever adds time): its
+// median share of a cycle (a frame slowed alone moves one share, not the median) times that cycle.
+inline double fastestCycleTime(const std::vector<double>& shares, const std::vector<double>& cycles) {
+  if (cycles.empty()) return 0.0;
+  return median(shares) * *std::min_element(cycles.begin(), cycles.end());
 }
 
 }  // namespace shadowref::timing

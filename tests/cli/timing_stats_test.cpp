@@ -48,20 +48,22 @@ TEST_CASE("cycleShares: a speed that changes from cycle to cycle leaves the shar
   CHECK(c.cycles[4] == 24.0);
   for (size_t i = 0; i < 3; ++i)
     for (double share : c.shares[i]) CHECK(share == Approx(work[i] / 8.0).epsilon(1e-15));
-  // The median cycle is 12 ms (8 8 12 12 24): the scenes at the 1.5x speed, in proportion.
-  CHECK(typicalTime(c.shares[0], c.cycles) == Approx(1.5));
-  CHECK(typicalTime(c.shares[2], c.cycles) == Approx(7.5));
+  // The fastest cycle is the one at full speed (8 ms): each scene's own work.
+  CHECK(fastestCycleTime(c.shares[0], c.cycles) == Approx(1.0));
+  CHECK(fastestCycleTime(c.shares[1], c.cycles) == Approx(2.0));
+  CHECK(fastestCycleTime(c.shares[2], c.cycles) == Approx(5.0));
 }
 
 TEST_CASE("cycleShares: one slow frame moves one cycle, not the median share", "[timing]") {
   // Work 2 and 2; in cycle 2 the first scene alone is slowed 4x (a hiccup): its share there is 8/10.
   const CycleShares c = cycleShares({{2, 2, 8, 2, 2}, {2, 2, 2, 2, 2}});
   CHECK(c.shares[0][2] == Approx(0.8));
-  CHECK(typicalTime(c.shares[0], c.cycles) == Approx(2.0));  // median share 1/2 x median cycle 4
-  CHECK(typicalTime(c.shares[1], c.cycles) == Approx(2.0));
+  CHECK(fastestCycleTime(c.shares[0], c.cycles) == Approx(2.0));  // median share 1/2 x fastest cycle 4
+  CHECK(fastestCycleTime(c.shares[1], c.cycles) == Approx(2.0));
 }
 
 TEST_CASE("cycleShares: no scenes, and scenes with different numbers of cycles", "[timing]") {
   CHECK(cycleShares({}).cycles.empty());
+  CHECK(fastestCycleTime({}, {}) == 0.0);
   CHECK_THROWS_AS(cycleShares({{1, 2}, {1}}), std::invalid_argument);
 }
