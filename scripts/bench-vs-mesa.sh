@@ -6,7 +6,7 @@
 # program against shadowref's per-pixel scenes — checks that 1, 2 and 8 threads give identical
 # buffers, and times the city against houses and lights. Prints the tables and writes
 # bench/results/vs-mesa.csv. Takes a while (softpipe is slow); --quick for fewer runs.
-#   scripts/bench-vs-mesa.sh [BUILD_DIR] [--quick] [vs_mesa options: --rounds N --frames N --no-scaling]
+#   scripts/bench-vs-mesa.sh [BUILD_DIR] [--quick] [vs_mesa options: --rounds N --frames N --no-scaling | --series]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
