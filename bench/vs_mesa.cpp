@@ -7,9 +7,10 @@
 // process gives every configuration the same start. Runs alternate between the configurations,
 // round by round in A B C … C B A order, because llvmpipe's timings jump between runs; each run
 // reports the median of its frames, each configuration the median of its runs. Each round runs
-// every compared scene once, as it runs every point of the houses and lights series (each round
-// from another one on), so that a slow stretch of the host is shared out among them; the series
-// fit the fastest run of each point.
+// every compared scene once (each round from another one on), so that a slow stretch of the host
+// is shared out among them. The houses and lights series are measured differently: each of
+// shadowref's runs renders every point of a series in turn in one process, and a point's figure is
+// its share of those cycles (measureSeries); Mesa's, for comparison, are the fastest run a point.
 //
 // Both run twice over, in two like-for-like pairs: Mesa with GL's fixed-function lighting (per
 // vertex) against shadowref with every material switched to Gouraud shading (the same lighting
@@ -222,10 +223,10 @@ int runWorker(const std::string& engine, int threads, int frames, const SceneCas
 
 // A series' points in one shadowref process, their frames interleaved: frame f of every point,
 // point after point (each cycle from the next point on), then frame f + 1. The host here changes
-// speed by about 1.5x within seconds; one cycle of the points takes a tenth of a second or so, so
-// every point's frames meet the host's speeds in about the same shares, and the points' times keep
-// their proportions however the host goes (measured a process per point, a point whose runs all
-// met the slower speed stood 1.5x off the others' line). Prints each point's times in order.
+// speed by about 1.5x within seconds; one cycle of the points takes a tenth of a second to a
+// second, so a change mostly falls between cycles and slows a cycle's frames alike, and the points'
+// times keep their proportions however the host goes (measured a process per point, a point whose
+// runs all met the slower speed stood 1.5x off the others' line). Prints each point's times in order.
 int runSeriesWorker(int threads, int frames, const std::vector<SceneCase>& cases) {
   keepFreedMemoryForReuse();
   std::vector<Scene> scenes;
@@ -742,8 +743,8 @@ std::vector<Measured> measureSeriesRun(const std::vector<SceneCase>& cases, cons
     m[i].renderer = runs[i].renderer;
     if (cfg.threads == 2) m[i].crossCore.push_back(crossCore);
   }
-  // Frame f of every point makes cycle f (runSeriesWorker): a tenth of a second or so, in which the
-  // host's speed seldom changes, so a point's share of it is its share of the work.
+  // Frame f of every point makes cycle f (runSeriesWorker): a tenth of a second to a second, in
+  // which the host's speed seldom changes, so a point's share of it is its share of the work.
   auto addShares = [&](std::vector<double> RunResult::*times, std::vector<double> Measured::*shares,
                        std::vector<double> Measured::*cycles) {
     std::vector<std::vector<double>> t;
