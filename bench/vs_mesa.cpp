@@ -270,6 +270,11 @@ struct RunResult {
   std::vector<double> cpuMs;    // CPU time of the whole process (all its threads)
 };
 
+// How a shadowref worker shades (gouraudFromEnvironment): per vertex against Mesa's fixed function.
+std::string shadingVariable(const Config& cfg) {
+  return cfg.lighting == MesaLighting::FixedFunction ? "VS_SHADOWREF_SHADING=gouraud " : "VS_SHADOWREF_SHADING=scene ";
+}
+
 std::string workerCommand(const Config& cfg, int frames, const SceneCase& c) {
   std::string cmd;
   if (cfg.engine == Engine::Llvmpipe)
@@ -277,7 +282,7 @@ std::string workerCommand(const Config& cfg, int frames, const SceneCase& c) {
   else if (cfg.engine == Engine::Softpipe)
     cmd = "GALLIUM_DRIVER=softpipe ";
   if (cfg.engine != Engine::Shadowref) cmd += std::string("VS_MESA_LIGHTING=") + lightingName(cfg.lighting) + " ";
-  else cmd += cfg.lighting == MesaLighting::FixedFunction ? "VS_SHADOWREF_SHADING=gouraud " : "VS_SHADOWREF_SHADING=scene ";
+  else cmd += shadingVariable(cfg);
   cmd += quoted(selfPath()) + " --worker " + cfg.driverName() + " " + std::to_string(cfg.threads) + " " +
          std::to_string(frames) + " " + quoted(c.file);
   for (const std::string& o : c.overrides) cmd += " " + quoted(o);
@@ -286,7 +291,7 @@ std::string workerCommand(const Config& cfg, int frames, const SceneCase& c) {
 
 // A series' points in one shadowref process (runSeriesWorker).
 std::string seriesWorkerCommand(const Config& cfg, int frames, const std::vector<SceneCase>& cases) {
-  std::string cmd = cfg.lighting == MesaLighting::FixedFunction ? "VS_SHADOWREF_SHADING=gouraud " : "VS_SHADOWREF_SHADING=scene ";
+  std::string cmd = shadingVariable(cfg);
   cmd += quoted(selfPath()) + " --series-worker " + std::to_string(cfg.threads) + " " + std::to_string(frames);
   for (const SceneCase& c : cases) {
     cmd += " --case " + quoted(c.file);
