@@ -12,6 +12,21 @@
 
 namespace shadowref::bench {
 
+// A line of a table of targets: the label in kTargetLabelWidth columns, then each cell right-aligned
+// in kTargetCellWidth - 1 after a space (target_tally.h reads runs' tables back by these widths).
+constexpr size_t kTargetLabelWidth = 44, kTargetCellWidth = 16;
+
+inline std::string targetLine(const std::string& what, const std::vector<std::string>& cells) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%-*s", int(kTargetLabelWidth), what.c_str());
+  std::string out = buf;
+  for (const std::string& c : cells) {
+    std::snprintf(buf, sizeof buf, " %*s", int(kTargetCellWidth - 1), c.c_str());
+    out += buf;
+  }
+  return out + "\n";
+}
+
 class TargetTable {
  public:
   explicit TargetTable(std::vector<std::string> columns) : columns_(std::move(columns)) {}
@@ -47,11 +62,11 @@ class TargetTable {
   int shortOf() const { return count(true); }
 
   std::string text() const {
-    std::string out = line("target", columns_);
+    std::string out = targetLine("target", columns_);
     for (const Row& r : rows_) {
       std::vector<std::string> cells;
       for (const Cell& c : r.cells) cells.push_back(c.text);
-      out += line(r.what, cells);
+      out += targetLine(r.what, cells);
     }
     return out + std::to_string(checked() - shortOf()) + " of " + std::to_string(checked()) +
            " figures at or above their targets\n";
@@ -81,16 +96,6 @@ class TargetTable {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.*f", decimals, std::floor(v * scale) / scale);
     return buf;
-  }
-  static std::string line(const std::string& what, const std::vector<std::string>& cells) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%-44s", what.c_str());
-    std::string out = buf;
-    for (const std::string& c : cells) {
-      std::snprintf(buf, sizeof buf, " %15s", c.c_str());
-      out += buf;
-    }
-    return out + "\n";
   }
   int count(bool onlyShort) const {
     int n = 0;

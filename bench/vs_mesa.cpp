@@ -27,6 +27,7 @@
 //
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling | --series]
 //   vs_mesa --agreement [--images DIR]
+//   vs_mesa --tally RUN.txt...       (issue 7's targets over saved runs: target_tally.h)
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -49,6 +50,7 @@
 #include <vector>
 
 #include "issue_targets.h"
+#include "target_tally.h"
 #include "conformance/osmesa_harness.h"
 #include "cli/timing_stats.h"
 #include "image/image_writer.h"
@@ -1104,6 +1106,27 @@ int runDriver(const Settings& s) {
   return std::find(identical.begin(), identical.end(), false) == identical.end() ? 0 : 1;
 }
 
+// --tally: the tables of targets of runs saved before (each the whole output of a run, as
+// scripts/bench-vs-mesa.sh writes bench/results/vs-mesa.txt), figure by figure over the runs.
+int tallyRuns(const std::vector<std::string>& files) {
+  if (files.empty()) throw std::runtime_error("--tally needs the saved output of at least one run");
+  TargetTally tally;
+  for (const std::string& file : files) {
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error(file + ": cannot be read");
+    const std::optional<RunTargets> run = readRunTargets(in);
+    if (!run) {
+      std::fprintf(stderr, "vs_mesa: %s: no table of targets (from before the bench printed one, or cut short); left out\n",
+                   file.c_str());
+      continue;
+    }
+    tally.add(file, *run);
+  }
+  if (tally.runs() == 0) throw std::runtime_error("--tally: none of the files holds a table of targets");
+  std::printf("%s", tally.text().c_str());
+  return 0;
+}
+
 }  // namespace
 
 }  // namespace shadowref::bench
@@ -1125,6 +1148,7 @@ int main(int argc, char** argv) {
       }
       return runSeriesWorker(std::atoi(argv[2]), std::atoi(argv[3]), cases);
     }
+    if (argc >= 2 && std::strcmp(argv[1], "--tally") == 0) return tallyRuns(std::vector<std::string>(argv + 2, argv + argc));
     Settings s;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -1142,7 +1166,8 @@ int main(int argc, char** argv) {
       else if (a == "--images") s.imageDir = next();
       else {
         std::fprintf(stderr, "usage: vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling | --series]\n"
-                             "       vs_mesa --agreement [--images DIR]\n");
+                             "       vs_mesa --agreement [--images DIR]\n"
+                             "       vs_mesa --tally RUN.txt...\n");
         return 2;
       }
     }
