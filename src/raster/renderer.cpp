@@ -98,7 +98,7 @@ void Renderer::addSetup(const WindowVertex& a, const WindowVertex& b, const Wind
     ws.setups.pop_back();
     return;
   }
-  ws.bounds.push_back({t.minX, t.minY, t.maxX, t.maxY});
+  ws.bounds.push_back(boundsOf(t));
 }
 
 void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, const RenderState& state,
@@ -520,7 +520,7 @@ void Renderer::assembleQueued() {
         const PendingDraw& pending = pending_[q.pending];
         std::copy(kept.setups_.begin(), kept.setups_.end(), pendingSetups_.begin() + std::ptrdiff_t(pending.first));
         std::copy(kept.bounds_.begin(), kept.bounds_.end(), pendingBounds_.begin() + std::ptrdiff_t(pending.first));
-        for (const SetupBounds& t : kept.bounds_) work.addTriangle(t.minX, t.minY, t.maxX, t.maxY, pending.region);
+        for (const SetupBounds& t : kept.bounds_) work.addTriangle(t, pending.region);
       }
       return;
     }
@@ -535,7 +535,7 @@ void Renderer::assembleQueued() {
       piece.minY = rows.minY;
       piece.maxY = rows.maxY;
       const Rect& region = pending_[queued_[piece.draw].pending].region;
-      for (const SetupBounds& t : bounds) work.addTriangle(t.minX, t.minY, t.maxX, t.maxY, region);
+      for (const SetupBounds& t : bounds) work.addTriangle(t, region);
       next = piece.setupsEnd;
     }
   });
@@ -708,7 +708,7 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
     if (draw.workCounted) continue;
     for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
       const SetupBounds& t = pendingBounds_[i];
-      rowWork_.addTriangle(t.minX, t.minY, t.maxX, t.maxY, draw.region);
+      rowWork_.addTriangle(t, draw.region);
     }
     draw.workCounted = true;
   }

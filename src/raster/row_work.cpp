@@ -4,25 +4,78 @@ namespace shadowref {
 
 void RowWork::addClear(const Rect& region) {
   if (region.width <= 0 || region.height <= 0) return;
-  diff_[size_t(region.y)] += region.width / 4 + kRowCost;
-  diff_[size_t(region.y + region.height)] -= region.width / 4 + kRowCost;
+  diff_[size_t(region.y)] += (region.width / 4 + kRowCost) * kUnit;
+  diff_[size_t(region.y + region.height)] -= (region.width / 4 + kRowCost) * kUnit;
   touched(size_t(region.y), size_t(region.y + region.height));
 }
 
+// A ramp is two entries of each list: the first row's weight and the step after it, then both
+// taken back after the last row (by the same integers, so the rows after it weigh nothing).
+void RowWork::addRamp(int first, int last, int64_t start, int64_t step, int bottom, int top) {
+  if (first < bottom) {
+    start += step * (bottom - first);
+    first = bottom;
+  }
+  last = std::min(last, top);
+  if (first > last) return;
+  diff_[size_t(first)] += start;
+  slope_[size_t(first) + 1] += step;
+  slope_[size_t(last) + 1] -= step;
+  diff_[size_t(last) + 1] -= start + step * (last - first);
+  touched(size_t(first), size_t(last) + 1);
+}
+
+// The triangle's width grows from its top row to the middle vertex's row and falls to its bottom
+// row: about 2 × pixels / rows at the peak (the rows' mean is half the peak's). Each side is a ramp,
+// and where it would be wider than the region, a flat run at the region's width.
+void RowWork::addShape(const SetupBounds& t, int bottom, int top, int64_t width) {
+  const int64_t rows = int64_t(t.maxY) - t.minY + 1;
+  const int64_t peak = std::max<int64_t>(2 * int64_t(t.pixels) * kUnit / rows, kUnit);
+  const int64_t cap = width * kUnit;
+  // Rising: rows minY … peakY weigh rise × 1, 2, …, n (n = peakY - minY + 1).
+  const int64_t n = int64_t(t.peakY) - t.minY + 1;
+  const int64_t rise = std::max<int64_t>(peak / n, 1);
+  const int64_t belowCap = std::min(n, (cap - 1) / rise);  // the rows under the cap: rise × k < cap
+  addRamp(t.minY, t.minY + int(belowCap) - 1, rise, rise, bottom, top);
+  addRamp(t.minY + int(belowCap), t.peakY, cap, 0, bottom, top);
+  // Falling: rows peakY + 1 … maxY weigh fall × m, …, 2, 1 (m = maxY - peakY).
+  const int64_t m = int64_t(t.maxY) - t.peakY;
+  if (m == 0) return;
+  const int64_t fall = std::max<int64_t>(peak / (m + 1), 1);
+  const int64_t underCap = std::min(m, (cap - 1) / fall);  // the last rows, fall × k < cap
+  addRamp(t.peakY + 1, t.maxY - int(underCap), cap, 0, bottom, top);
+  addRamp(t.maxY - int(underCap) + 1, t.maxY, fall * underCap, -fall, bottom, top);
+}
+
 void RowWork::add(const RowWork& other) {
-  for (size_t r = other.lowest_; r <= other.highest_ && r < diff_.size(); ++r) diff_[r] += other.diff_[r];
+  for (size_t r = other.lowest_; r <= other.highest_ && r < diff_.size(); ++r) {
+    diff_[r] += other.diff_[r];
+    slope_[r] += other.slope_[r];
+  }
   touched(other.lowest_, other.highest_);
 }
 
-int RowWork::split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow) {
-  // Each row's work from the differences; + 1 a row: no row is free, and no band is of no rows.
-  std::vector<int64_t>& work = work_;
+// Each row's work from the differences; + 1 pixel a row: no row is free, and no band is of no rows.
+int64_t RowWork::weigh(int minY, int maxY, std::vector<int64_t>& work) const {
   work.resize(size_t(maxY - minY + 1));
-  int64_t running = 0, total = 0;
+  int64_t step = 0, running = 0, total = 0;
   for (int y = 0; y <= maxY; ++y) {
-    running += diff_[size_t(y)];
-    if (y >= minY) total += work[size_t(y - minY)] = running + 1;
+    step += slope_[size_t(y)];
+    running += diff_[size_t(y)] + step;
+    if (y >= minY) total += work[size_t(y - minY)] = running + kUnit;
   }
+  return total;
+}
+
+std::vector<int64_t> RowWork::rowWeights(int minY, int maxY) const {
+  std::vector<int64_t> work;
+  weigh(minY, maxY, work);
+  return work;
+}
+
+int RowWork::split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow) {
+  std::vector<int64_t>& work = work_;
+  const int64_t total = weigh(minY, maxY, work);
   const size_t rows = work.size();
   const int64_t parts = int64_t(maxBands) * (maxBands + 3) / 2;  // (maxBands + 1) + … + 2
   firstRow.assign(1, minY);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "raster/render_state.h"
+#include "raster/triangle_setup.h"
 
 namespace shadowref {
 
@@ -16,24 +17,34 @@ class RowWork {
   // Forgets every triangle and clear, for a framebuffer of `rows` rows: zeroes what was written
   // (a flush resets a list per assembly task, of 2049 entries for a 2048² map).
   void reset(int rows) {
-    if (diff_.size() != size_t(rows) + 1) diff_.assign(size_t(rows) + 1, 0);
-    else if (lowest_ <= highest_) std::fill(diff_.begin() + std::ptrdiff_t(lowest_), diff_.begin() + std::ptrdiff_t(highest_) + 1, 0);
+    if (diff_.size() != size_t(rows) + 1) {
+      diff_.assign(size_t(rows) + 1, 0);
+      slope_.assign(size_t(rows) + 1, 0);
+    } else if (lowest_ <= highest_) {
+      std::fill(diff_.begin() + std::ptrdiff_t(lowest_), diff_.begin() + std::ptrdiff_t(highest_) + 1, 0);
+      std::fill(slope_.begin() + std::ptrdiff_t(lowest_), slope_.begin() + std::ptrdiff_t(highest_) + 1, 0);
+    }
     lowest_ = diff_.size();
     highest_ = 0;
   }
 
-  // A triangle whose bounding box is [minX, maxX] x [minY, maxY], drawn inside `region`: its
-  // width on each of its rows and a row's fixed cost, once its fixed cost. A difference list (each
-  // triangle writes three entries, not one per row), so that a group of triangles on one thread can
-  // be counted on its own and added to the others (add).
-  void addTriangle(int minX, int minY, int maxX, int maxY, const Rect& region) {
-    const int top = std::min(maxY, region.y + region.height - 1), bottom = std::max(minY, region.y);
-    const int64_t width = int64_t(std::min(maxX, region.x + region.width - 1)) - std::max(minX, region.x) + 1;
+  // A triangle drawn inside `region`: on each of its rows the pixels it covers there and a row's
+  // fixed cost, once its fixed cost. Difference lists (each triangle writes a few entries, not
+  // one per row), so that a group of triangles on one thread can be counted on its own and added
+  // to the others (add). A triangle of fewer than kShapedRows rows weighs each row by half its
+  // box's width (its rows' mean, about); a taller one by its shape — widest at its middle
+  // vertex's row, narrowing linearly to its top and bottom rows — cut to the region's width.
+  void addTriangle(const SetupBounds& t, const Rect& region) {
+    const int top = std::min(t.maxY, region.y + region.height - 1), bottom = std::max(t.minY, region.y);
+    const int64_t width = int64_t(std::min(t.maxX, region.x + region.width - 1)) - std::max(t.minX, region.x) + 1;
     if (bottom > top || width <= 0) return;
-    diff_[size_t(bottom)] += width + kRowCost + kTriangleCost;
-    diff_[size_t(bottom) + 1] -= kTriangleCost;
-    diff_[size_t(top) + 1] -= width + kRowCost;
+    const bool shaped = t.maxY - t.minY + 1 >= kShapedRows;
+    const int64_t rowPixels = shaped ? 0 : std::min(width, (int64_t(t.maxX) - t.minX + 2) / 2);
+    diff_[size_t(bottom)] += (rowPixels + kRowCost + kTriangleCost) * kUnit;
+    diff_[size_t(bottom) + 1] -= kTriangleCost * kUnit;
+    diff_[size_t(top) + 1] -= (rowPixels + kRowCost) * kUnit;
     touched(size_t(bottom), size_t(top) + 1);
+    if (shaped) addShape(t, bottom, top, width);
   }
   // A cleared rectangle: a cleared row costs about a quarter of a drawn one.
   void addClear(const Rect& region);
@@ -48,11 +59,24 @@ class RowWork {
   // ends. The city's shadow volumes crowd into the lower rows: equal rows would leave one thread
   // most of them.
   int split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow);
+  // Rows [minY, maxY]'s estimated work, in 1/kUnit of a pixel (what split cuts).
+  std::vector<int64_t> rowWeights(int minY, int maxY) const;
+  static constexpr int64_t kUnit = 256;
 
  private:
-  // A row's and a triangle's fixed costs, in pixels.
+  // A row's and a triangle's fixed costs, in pixels; the height from which a triangle's rows are
+  // weighed by its shape; the lists count in 1/kUnit of a pixel (a tall sliver's width changes by
+  // less than a pixel a row).
   static constexpr int64_t kRowCost = 8, kTriangleCost = 64;
+  static constexpr int kShapedRows = 32;
+  // The pixels of a tall triangle's rows [bottom, top] (inside the region), at most `width` a row.
+  void addShape(const SetupBounds& t, int bottom, int top, int64_t width);
+  // Rows [first, last] (clipped to [bottom, top]) weighing start, start + step, … (in 1/kUnit).
+  void addRamp(int first, int last, int64_t start, int64_t step, int bottom, int top);
+  // Fills `work` with rows [minY, maxY]'s work, returns their sum.
+  int64_t weigh(int minY, int maxY, std::vector<int64_t>& work) const;
   std::vector<int64_t> diff_;  // per row, what its work adds to the row above's
+  std::vector<int64_t> slope_;  // per row, what it adds to the next rows' differences (ramps)
   std::vector<int64_t> work_;  // split's: the work of each of its rows
   size_t lowest_ = 0, highest_ = 0;  // the entries of diff_ written since reset: [lowest_, highest_]
   void touched(size_t first, size_t last) {

@@ -1,6 +1,8 @@
-// The estimate of each row's work and the bands cut from it (raster/row_work.h), against splits
-// worked out by hand: a row costs its pixels in the triangles' boxes plus 8, a triangle 64 more on
-// its first row, every row 1 more; band b of n gets n + 1 - b parts of n (n + 3) / 2.
+// The estimate of each row's work and the bands cut from it (raster/row_work.h), against weights
+// and splits worked out by hand: a row costs the pixels a triangle covers in it (a short
+// triangle: half its box's width; a tall one: its shape, widest at its middle vertex's row) plus
+// 8, a triangle 64 more on its first row, every row 1 more — in 1/256 of a pixel; band b of n gets
+// n + 1 - b parts of n (n + 3) / 2.
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -11,6 +13,9 @@ using namespace shadowref;
 
 namespace {
 const Rect kRegion{0, 0, 100, 64};
+
+// A triangle's bounds for the estimate; a short one's middle row and area do not enter it.
+SetupBounds box(int minX, int minY, int maxX, int maxY) { return {minX, minY, maxX, maxY, minY, 1}; }
 }
 
 TEST_CASE("rows without triangles are cut into shrinking shares of equal rows", "[raster][bands]") {
@@ -28,12 +33,19 @@ TEST_CASE("rows without triangles are cut into shrinking shares of equal rows", 
   CHECK(first == std::vector<int>{10, 30, 42});
 }
 
-TEST_CASE("a triangle's rows weigh by its width inside the region, its first row by 64 more", "[raster][bands]") {
+TEST_CASE("a short triangle's rows weigh by half its box's width inside the region, its first row by 64 more",
+          "[raster][bands]") {
   RowWork work;
   work.reset(64);
-  // Rows 0 … 15, 100 pixels wide once clamped to the region (it reaches out on both sides):
-  // rows 0 … 15 cost 109 each, row 0 64 more, rows 16 … 63 cost 1: 1856 in all.
-  work.addTriangle(-50, -3, 180, 15, kRegion);
+  // Rows 0 … 15 in the region (19 rows: short), half its box 116 pixels, 100 once clamped to the
+  // region (it reaches out on both sides): rows 0 … 15 cost 109 each, row 0 64 more, rows 16 … 63
+  // cost 1: 1856 in all.
+  work.addTriangle(box(-50, -3, 180, 15), kRegion);
+  const std::vector<int64_t> weights = work.rowWeights(0, 63);
+  CHECK(weights.at(0) == 173 * 256);
+  CHECK(weights.at(5) == 109 * 256);
+  CHECK(weights.at(15) == 109 * 256);
+  CHECK(weights.at(16) == 256);
   std::vector<int> first;
   // Three bands, shares 4, 3 and 2 of 9: the first has its 4/9 (824.9) at row 6 (7 * 109 + 64 =
   // 827) but a band has at least 16 rows; the second has its 7/9 at row 15 already and ends after
@@ -49,8 +61,9 @@ TEST_CASE("triangles and clears outside the region count nothing", "[raster][ban
   RowWork empty, work;
   empty.reset(64);
   work.reset(64);
-  work.addTriangle(120, 0, 130, 63, kRegion);  // right of the region
-  work.addTriangle(0, 0, 99, 63, Rect{0, 0, 0, 64});  // an empty region
+  work.addTriangle(box(120, 0, 130, 63), kRegion);  // right of the region
+  work.addTriangle(box(0, 0, 99, 63), Rect{0, 0, 0, 64});  // an empty region
+  work.addTriangle({120, 0, 130, 63, 10, 300}, kRegion);  // a tall one right of the region
   work.addClear(Rect{0, 0, 0, 64});
   std::vector<int> a, b;
   CHECK(work.split(0, 63, 3, 4, a) == empty.split(0, 63, 3, 4, b));
@@ -59,22 +72,21 @@ TEST_CASE("triangles and clears outside the region count nothing", "[raster][ban
 
 TEST_CASE("counts of groups of triangles add up to the count of all of them", "[raster][bands]") {
   // assembleQueued counts each group's triangles on its own thread and the flush adds them.
-  struct Box {
-    int minX, minY, maxX, maxY;
-  };
-  const std::vector<Box> boxes{{0, 0, 99, 5}, {10, 20, 30, 60}, {-5, 40, 200, 45}, {50, 7, 51, 7}, {3, 30, 90, 63}};
+  // Short ones and tall ones (41 and 34 rows), one reaching out of the region.
+  const std::vector<SetupBounds> triangles{box(0, 0, 99, 5), {10, 20, 30, 60, 50, 400}, box(-5, 40, 200, 45),
+                                           box(50, 7, 51, 7), {3, 30, 190, 63, 31, 2500}};
   RowWork all, groupA, groupB;
   for (RowWork* w : {&all, &groupA, &groupB}) w->reset(64);
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    const Box& b = boxes[i];
-    all.addTriangle(b.minX, b.minY, b.maxX, b.maxY, kRegion);
-    (i % 2 ? groupA : groupB).addTriangle(b.minX, b.minY, b.maxX, b.maxY, kRegion);
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    all.addTriangle(triangles[i], kRegion);
+    (i % 2 ? groupA : groupB).addTriangle(triangles[i], kRegion);
   }
   all.addClear(Rect{0, 8, 100, 20});
   groupB.addClear(Rect{0, 8, 100, 20});
   groupA.add(groupB);
   for (int bands : {2, 3, 6}) {
     std::vector<int> a, b;
+    CHECK(all.rowWeights(0, 63) == groupA.rowWeights(0, 63));
     CHECK(all.split(0, 63, bands, 4, a) == groupA.split(0, 63, bands, 4, b));
     CHECK(a == b);
     CHECK(a.size() >= 3);
@@ -88,25 +100,90 @@ TEST_CASE("a reset count forgets every triangle, clear and added count, over the
   RowWork fresh, reused, other;
   fresh.reset(64);
   other.reset(64);
-  other.addTriangle(10, 40, 60, 63, kRegion);
+  other.addTriangle(box(10, 40, 60, 63), kRegion);
   reused.reset(64);
-  reused.addTriangle(0, 0, 99, 20, kRegion);
+  reused.addTriangle(box(0, 0, 99, 20), kRegion);
+  reused.addTriangle({0, 0, 99, 40, 30, 1500}, kRegion);  // tall: its ramps must be forgotten too
   reused.addClear(Rect{0, 30, 100, 10});
   reused.add(other);
   std::vector<int> a, b;
   REQUIRE(reused.split(0, 63, 3, 4, a) == 3);
   REQUIRE(a != std::vector<int>({0, 1, 2, 3}));
   reused.reset(64);
-  fresh.addTriangle(5, 8, 50, 30, kRegion);
-  reused.addTriangle(5, 8, 50, 30, kRegion);
+  fresh.addTriangle(box(5, 8, 50, 30), kRegion);
+  reused.addTriangle(box(5, 8, 50, 30), kRegion);
+  CHECK(fresh.rowWeights(0, 63) == reused.rowWeights(0, 63));
   CHECK(fresh.split(0, 63, 3, 4, a) == reused.split(0, 63, 3, 4, b));
   CHECK(a == b);
   // Another height: a new list.
   RowWork taller;
   taller.reset(128);
   reused.reset(128);
-  taller.addTriangle(5, 100, 50, 120, Rect{0, 0, 100, 128});
-  reused.addTriangle(5, 100, 50, 120, Rect{0, 0, 100, 128});
+  taller.addTriangle(box(5, 100, 50, 120), Rect{0, 0, 100, 128});
+  reused.addTriangle(box(5, 100, 50, 120), Rect{0, 0, 100, 128});
   CHECK(taller.split(0, 127, 3, 4, a) == reused.split(0, 127, 3, 4, b));
   CHECK(a == b);
+}
+
+TEST_CASE("a tall triangle's rows weigh by its shape: rising to its middle vertex's row, then falling", "[raster][bands]") {
+  // Rows 0 … 39 (40: tall), middle vertex on row 9, 1000 pixels: 2 × 1000 / 40 = 50 pixels at
+  // the peak (12800 in 1/256). Rising over 10 rows by 12800 / 10 = 1280 a row: row k weighs
+  // 1280 (k + 1) up to 12800 on row 9. Falling over the 30 rows after it by 12800 / 31 = 412 (cut
+  // to an integer) a row: row 10 weighs 412 × 30 = 12360, row 39 412. Each row 8 × 256 + 256 =
+  // 2304 more, row 0 64 × 256 = 16384 more.
+  const SetupBounds t{0, 0, 99, 39, 9, 1000};
+  RowWork work;
+  work.reset(64);
+  work.addTriangle(t, kRegion);
+  std::vector<int64_t> w = work.rowWeights(0, 63);
+  CHECK(w.at(0) == 1280 + 2304 + 16384);
+  CHECK(w.at(4) == 1280 * 5 + 2304);
+  CHECK(w.at(9) == 12800 + 2304);
+  CHECK(w.at(10) == 12360 + 2304);
+  CHECK(w.at(20) == 412 * 20 + 2304);
+  CHECK(w.at(39) == 412 + 2304);
+  CHECK(w.at(40) == 256);
+  CHECK(w.at(63) == 256);
+
+  // In a region 30 pixels wide (7680) the rows wider than it weigh 7680: rising, rows 0 … 4
+  // (1280 × 5 = 6400 < 7680), then rows 5 … 9 at 7680; falling, 412 × 18 = 7416 < 7680, so rows
+  // 22 … 39 fall from 7416 to 412 and rows 10 … 21 stay at 7680.
+  RowWork narrow;
+  narrow.reset(64);
+  narrow.addTriangle(t, Rect{0, 0, 30, 64});
+  w = narrow.rowWeights(0, 63);
+  CHECK(w.at(4) == 6400 + 2304);
+  CHECK(w.at(5) == 7680 + 2304);
+  CHECK(w.at(9) == 7680 + 2304);
+  CHECK(w.at(10) == 7680 + 2304);
+  CHECK(w.at(21) == 7680 + 2304);
+  CHECK(w.at(22) == 7416 + 2304);
+  CHECK(w.at(39) == 412 + 2304);
+
+  // In rows 20 … 63 only: its first row there is row 20 (12360 - 412 × 10 = 8240, and the
+  // triangle's 64 pixels), and nothing of it is left after row 39.
+  RowWork upper;
+  upper.reset(64);
+  upper.addTriangle(t, Rect{0, 20, 100, 44});
+  w = upper.rowWeights(20, 63);
+  CHECK(w.at(0) == 8240 + 2304 + 16384);
+  CHECK(w.at(19) == 412 + 2304);
+  CHECK(w.at(20) == 256);
+}
+
+TEST_CASE("bands follow a tall triangle's shape, not its box", "[raster][bands]") {
+  // Rows 0 … 63, widest on its first row (100 pixels: 2 × 3200 / 64), then narrowing by 25600 /
+  // 64 = 400 a row: row y ≥ 1 weighs 400 (64 - y) + 2304, row 0 25600 + 2304 + 16384 = 44288; all
+  // rows 995840. Two bands: the first takes 3 of 5 parts, 597504, reached after row 25 (611888;
+  // after row 24 593984). By its box the rows would weigh alike and the cut fall after row 38.
+  RowWork work;
+  work.reset(64);
+  work.addTriangle({0, 0, 99, 63, 0, 3200}, kRegion);
+  const std::vector<int64_t> w = work.rowWeights(0, 63);
+  int64_t total = 0;
+  for (int64_t x : w) total += x;
+  CHECK(total == 995840);
+  std::vector<int> first;
+  CHECK(work.split(0, 63, 2, 4, first) == 2);
+  CHECK(first == std::vector<int>{0, 26, 64});
 }
