@@ -98,7 +98,7 @@ void Renderer::addSetup(const WindowVertex& a, const WindowVertex& b, const Wind
     ws.setups.pop_back();
     return;
   }
-  ws.bounds.push_back(boundsOf(t));
+  ws.bounds.push_back({t.minX, t.minY, t.maxX, t.maxY});
 }
 
 void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, const RenderState& state,
@@ -509,9 +509,13 @@ void Renderer::assembleQueued() {
   if (queuedKeptFirst_.back() != queuedKept_.size()) queuedKeptFirst_.push_back(queuedKept_.size());
   const size_t tasks = groups + queuedKeptFirst_.size() - 1;
   if (queuedRowWork_.size() < tasks) queuedRowWork_.resize(tasks);
+  const bool byShape = RowWork::weighsShapes(end);
   pool_->run(int(tasks), [&](int task) {
     RowWork& work = queuedRowWork_[size_t(task)].work;
     work.reset(fb_.height());
+    // Copies, not references: the loops below store to the lists, and what the compiler cannot
+    // tell apart from those stores it would load again for every triangle.
+    const bool shapes = byShape;
     if (size_t(task) >= groups) {
       const size_t run = size_t(task) - groups;
       for (size_t k = queuedKeptFirst_[run]; k < queuedKeptFirst_[run + 1]; ++k) {
@@ -520,7 +524,8 @@ void Renderer::assembleQueued() {
         const PendingDraw& pending = pending_[q.pending];
         std::copy(kept.setups_.begin(), kept.setups_.end(), pendingSetups_.begin() + std::ptrdiff_t(pending.first));
         std::copy(kept.bounds_.begin(), kept.bounds_.end(), pendingBounds_.begin() + std::ptrdiff_t(pending.first));
-        for (const SetupBounds& t : kept.bounds_) work.addTriangle(t, pending.region);
+        const Rect region = pending.region;
+        for (size_t i = 0; i < kept.bounds_.size(); ++i) work.addTriangle(kept.bounds_[i], *kept.setups_[i], region, shapes);
       }
       return;
     }
@@ -534,8 +539,9 @@ void Renderer::assembleQueued() {
       const SpannedRows rows = rowsSpanned(bounds);
       piece.minY = rows.minY;
       piece.maxY = rows.maxY;
-      const Rect& region = pending_[queued_[piece.draw].pending].region;
-      for (const SetupBounds& t : bounds) work.addTriangle(t, region);
+      const Rect region = pending_[queued_[piece.draw].pending].region;
+      const TriangleSetup* setups = ws.setups.data() + next;
+      for (size_t k = 0; k < bounds.size(); ++k) work.addTriangle(bounds[k], setups[k], region, shapes);
       next = piece.setupsEnd;
     }
   });
@@ -704,11 +710,11 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
 int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
   for (size_t g = 0; g < queuedRowWorkCount_; ++g) rowWork_.add(queuedRowWork_[g].work);
   queuedRowWorkCount_ = 0;
+  const bool byShape = RowWork::weighsShapes(pendingSetups_.size());
   for (PendingDraw& draw : pending_) {
     if (draw.workCounted) continue;
     for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
-      const SetupBounds& t = pendingBounds_[i];
-      rowWork_.addTriangle(t, draw.region);
+      rowWork_.addTriangle(pendingBounds_[i], *pendingSetups_[i], draw.region, byShape);
     }
     draw.workCounted = true;
   }

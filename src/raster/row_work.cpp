@@ -26,24 +26,30 @@ void RowWork::addRamp(int first, int last, int64_t start, int64_t step, int bott
 }
 
 // The triangle's width grows from its top row to the middle vertex's row and falls to its bottom
-// row: about 2 × pixels / rows at the peak (the rows' mean is half the peak's). Each side is a ramp,
+// row: about 2 × area / rows at the peak (the rows' mean is half the peak's). Each side is a ramp,
 // and where it would be wider than the region, a flat run at the region's width.
-void RowWork::addShape(const SetupBounds& t, int bottom, int top, int64_t width) {
+void RowWork::addShape(const SetupBounds& t, const TriangleSetup& setup, int bottom, int top, int64_t width) {
   const int64_t rows = int64_t(t.maxY) - t.minY + 1;
-  const int64_t peak = std::max<int64_t>(2 * int64_t(t.pixels) * kUnit / rows, kUnit);
+  // The peak's 2 × area × kUnit from area2, twice the area in 1/256² of a pixel: area2 × 2^9 /
+  // 2^17, shifted down rather than multiplied up (area2 reaches 2^58 in the guard band).
+  const int64_t peak = std::max<int64_t>((setup.area2 >> (2 * kSubpixelBits - 8)) / rows, kUnit);
+  // The widest row: the one whose centre is nearest the middle vertex (>> floors, also below 0).
+  const int64_t y0 = setup.v[0].y, y1 = setup.v[1].y, y2 = setup.v[2].y;
+  const int64_t middle = y0 + y1 + y2 - std::min({y0, y1, y2}) - std::max({y0, y1, y2});
+  const int peakY = std::clamp(int(middle >> kSubpixelBits), t.minY, t.maxY);
   const int64_t cap = width * kUnit;
   // Rising: rows minY … peakY weigh rise × 1, 2, …, n (n = peakY - minY + 1).
-  const int64_t n = int64_t(t.peakY) - t.minY + 1;
+  const int64_t n = int64_t(peakY) - t.minY + 1;
   const int64_t rise = std::max<int64_t>(peak / n, 1);
   const int64_t belowCap = std::min(n, (cap - 1) / rise);  // the rows under the cap: rise × k < cap
   addRamp(t.minY, t.minY + int(belowCap) - 1, rise, rise, bottom, top);
-  addRamp(t.minY + int(belowCap), t.peakY, cap, 0, bottom, top);
+  addRamp(t.minY + int(belowCap), peakY, cap, 0, bottom, top);
   // Falling: rows peakY + 1 … maxY weigh fall × m, …, 2, 1 (m = maxY - peakY).
-  const int64_t m = int64_t(t.maxY) - t.peakY;
+  const int64_t m = int64_t(t.maxY) - peakY;
   if (m == 0) return;
   const int64_t fall = std::max<int64_t>(peak / (m + 1), 1);
   const int64_t underCap = std::min(m, (cap - 1) / fall);  // the last rows, fall × k < cap
-  addRamp(t.peakY + 1, t.maxY - int(underCap), cap, 0, bottom, top);
+  addRamp(peakY + 1, t.maxY - int(underCap), cap, 0, bottom, top);
   addRamp(t.maxY - int(underCap) + 1, t.maxY, fall * underCap, -fall, bottom, top);
 }
 

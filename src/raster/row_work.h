@@ -31,21 +31,29 @@ class RowWork {
   // A triangle drawn inside `region`: on each of its rows the pixels it covers there and a row's
   // fixed cost, once its fixed cost. Difference lists (each triangle writes a few entries, not
   // one per row), so that a group of triangles on one thread can be counted on its own and added
-  // to the others (add). A triangle of fewer than kShapedRows rows weighs each row by half its
-  // box's width (its rows' mean, about); a taller one by its shape — widest at its middle
-  // vertex's row, narrowing linearly to its top and bottom rows — cut to the region's width.
-  void addTriangle(const SetupBounds& t, const Rect& region) {
+  // to the others (add). A triangle of fewer than kShapedRows rows, or any
+  // with byShape false, weighs each row by half its box's width in the region (its rows' mean,
+  // about); a taller
+  // one by its shape — widest at its middle vertex's row, narrowing linearly to its top and bottom
+  // rows — cut to the region's width.
+  // The setup is read only for a triangle weighed by its shape (its vertices' rows and its area).
+  void addTriangle(const SetupBounds& t, const TriangleSetup& setup, const Rect& region, bool byShape) {
     const int top = std::min(t.maxY, region.y + region.height - 1), bottom = std::max(t.minY, region.y);
     const int64_t width = int64_t(std::min(t.maxX, region.x + region.width - 1)) - std::max(t.minX, region.x) + 1;
     if (bottom > top || width <= 0) return;
-    const bool shaped = t.maxY - t.minY + 1 >= kShapedRows;
-    const int64_t rowPixels = shaped ? 0 : std::min(width, (int64_t(t.maxX) - t.minX + 2) / 2);
-    diff_[size_t(bottom)] += (rowPixels + kRowCost + kTriangleCost) * kUnit;
+    const bool shaped = byShape && t.maxY - t.minY + 1 >= kShapedRows;
+    const int64_t row = ((shaped ? 0 : (width + 1) >> 1) + kRowCost) * kUnit;
+    diff_[size_t(bottom)] += row + kTriangleCost * kUnit;
     diff_[size_t(bottom) + 1] -= kTriangleCost * kUnit;
-    diff_[size_t(top) + 1] -= (rowPixels + kRowCost) * kUnit;
+    diff_[size_t(top) + 1] -= row;
     touched(size_t(bottom), size_t(top) + 1);
-    if (shaped) addShape(t, bottom, top, width);
+    if (shaped) addShape(t, setup, bottom, top, width);
   }
+  // Whether a flush of this many setups is weighed by the triangles' shapes: a pass of many small
+  // triangles (the pumpkins' 27 000) evens out what their boxes get wrong, and the shapes' ramps
+  // would cost it 2 % more instructions at two threads; a pass of a few hundred large ones (the
+  // room's walls and volume sides) is where a box gives a band the wrong share.
+  static bool weighsShapes(size_t setups) { return setups <= 4096; }
   // A cleared rectangle: a cleared row costs about a quarter of a drawn one.
   void addClear(const Rect& region);
   // Another count over the same rows (only the entries it wrote: with many threads a flush adds
@@ -64,13 +72,13 @@ class RowWork {
   static constexpr int64_t kUnit = 256;
 
  private:
-  // A row's and a triangle's fixed costs, in pixels; the height from which a triangle's rows are
-  // weighed by its shape; the lists count in 1/kUnit of a pixel (a tall sliver's width changes by
-  // less than a pixel a row).
+  // A row's and a triangle's fixed costs, in pixels (the lists count in 1/kUnit of a pixel: a tall
+  // sliver's width changes by less than a pixel a row).
   static constexpr int64_t kRowCost = 8, kTriangleCost = 64;
+  // The height from which a triangle's rows are weighed by its shape.
   static constexpr int kShapedRows = 32;
   // The pixels of a tall triangle's rows [bottom, top] (inside the region), at most `width` a row.
-  void addShape(const SetupBounds& t, int bottom, int top, int64_t width);
+  void addShape(const SetupBounds& t, const TriangleSetup& setup, int bottom, int top, int64_t width);
   // Rows [first, last] (clipped to [bottom, top]) weighing start, start + step, … (in 1/kUnit).
   void addRamp(int first, int last, int64_t start, int64_t step, int bottom, int top);
   // Fills `work` with rows [minY, maxY]'s work, returns their sum.

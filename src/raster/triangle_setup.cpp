@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <utility>
 
 namespace shadowref {
@@ -140,15 +139,6 @@ bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVer
   return true;
 }
 
-
-SetupBounds boundsOf(const TriangleSetup& t) {
-  const int64_t y0 = t.v[0].y, y1 = t.v[1].y, y2 = t.v[2].y;
-  const int64_t middle = y0 + y1 + y2 - std::min({y0, y1, y2}) - std::max({y0, y1, y2});
-  // The row whose centre is nearest the middle vertex (>> floors, also below row 0).
-  const int peakY = std::clamp(int((middle) >> kSubpixelBits), t.minY, t.maxY);
-  const int64_t pixels = t.area2 >> (2 * kSubpixelBits + 1);  // area2 is twice the area, in 1/256²
-  return {t.minX, t.minY, t.maxX, t.maxY, peakY, int(std::min<int64_t>(pixels, std::numeric_limits<int>::max()))};
-}
 
 double polygonOffset(const TriangleSetup& t, const PolygonOffset& po, const DepthCodec& codec) {
   const double m = std::max(std::fabs(t.dzdx), std::fabs(t.dzdy));

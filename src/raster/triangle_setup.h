@@ -70,21 +70,12 @@ struct TriangleSetup {
   }
 };
 
-// The pixels a setup may cover (its minX … maxY) and the shape of its rows, in a compact list
-// beside the setups: the flush's loops (a draw's rows, the bands' work estimate) and each band's
-// choice of its setups read 24 bytes a triangle instead of a line of a few-hundred-byte setup
-// another thread wrote.
+// The pixels a setup may cover (its minX … maxY), in a compact list beside the setups: the
+// flush's loops (a draw's rows, the bands' work estimate) and each band's choice of its setups
+// read 16 bytes a triangle instead of a line of a few-hundred-byte setup another thread wrote.
 struct SetupBounds {
   int minX, minY, maxX, maxY;
-  // The row of the middle vertex — the widest row, from which the rows narrow linearly to the top
-  // and bottom vertices — and the triangle's area in pixels (at most INT_MAX): with these the bands'
-  // estimate (RowWork) weighs each row by the pixels the triangle covers in it, where the box would
-  // give a wall's or a volume side's lower rows as much as its widest.
-  int peakY, pixels;
 };
-
-// A setup's bounds and shape.
-SetupBounds boundsOf(const TriangleSetup& t);
 
 // The setups of a block of triangles, set up in place: emplace_back() leaves the setup
 // unconstructed (no zero-fill of a few hundred bytes that setupTriangle writes again).

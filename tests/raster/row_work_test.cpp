@@ -14,8 +14,17 @@ using namespace shadowref;
 namespace {
 const Rect kRegion{0, 0, 100, 64};
 
-// A triangle's bounds for the estimate; a short one's middle row and area do not enter it.
-SetupBounds box(int minX, int minY, int maxX, int maxY) { return {minX, minY, maxX, maxY, minY, 1}; }
+SetupBounds box(int minX, int minY, int maxX, int maxY) { return {minX, minY, maxX, maxY}; }
+
+// What the estimate reads of a tall triangle's setup: its vertices' rows (the middle one's row is
+// its widest: here all three sit on that row's centre) and its area.
+TriangleSetup shape(int peakY, int64_t pixels) {
+  TriangleSetup t;
+  for (WindowVertex& v : t.v) v.y = int64_t(peakY) * kSubpixelOne + kSubpixelHalf;
+  t.area2 = pixels << (2 * kSubpixelBits + 1);
+  return t;
+}
+const TriangleSetup kShort = shape(0, 1);  // a short triangle's setup is not read
 }
 
 TEST_CASE("rows without triangles are cut into shrinking shares of equal rows", "[raster][bands]") {
@@ -37,19 +46,19 @@ TEST_CASE("a short triangle's rows weigh by half its box's width inside the regi
           "[raster][bands]") {
   RowWork work;
   work.reset(64);
-  // Rows 0 … 15 in the region (19 rows: short), half its box 116 pixels, 100 once clamped to the
-  // region (it reaches out on both sides): rows 0 … 15 cost 109 each, row 0 64 more, rows 16 … 63
-  // cost 1: 1856 in all.
-  work.addTriangle(box(-50, -3, 180, 15), kRegion);
+  // Rows 0 … 15 in the region (19 rows: short), its box 100 pixels wide once clamped to the
+  // region (it reaches out on both sides), half of it 50: rows 0 … 15 cost 50 + 8 + 1 = 59 each,
+  // row 0 64 more, rows 16 … 63 cost 1: 1056 in all.
+  work.addTriangle(box(-50, -3, 180, 15), kShort, kRegion, true);
   const std::vector<int64_t> weights = work.rowWeights(0, 63);
-  CHECK(weights.at(0) == 173 * 256);
-  CHECK(weights.at(5) == 109 * 256);
-  CHECK(weights.at(15) == 109 * 256);
+  CHECK(weights.at(0) == 123 * 256);
+  CHECK(weights.at(5) == 59 * 256);
+  CHECK(weights.at(15) == 59 * 256);
   CHECK(weights.at(16) == 256);
   std::vector<int> first;
-  // Three bands, shares 4, 3 and 2 of 9: the first has its 4/9 (824.9) at row 6 (7 * 109 + 64 =
-  // 827) but a band has at least 16 rows; the second has its 7/9 at row 15 already and ends after
-  // 16 rows.
+  // Three bands, shares 4, 3 and 2 of 9: the first has its 4/9 (469.3) at row 6 (7 * 59 + 64 =
+  // 477) but a band has at least 16 rows; the second has its 7/9 (821.3) at row 15 already and
+  // ends after 16 rows.
   CHECK(work.split(0, 63, 3, 16, first) == 3);
   CHECK(first == std::vector<int>{0, 16, 32, 64});
   // Without the 16-row floor the first band ends at row 6.
@@ -61,9 +70,9 @@ TEST_CASE("triangles and clears outside the region count nothing", "[raster][ban
   RowWork empty, work;
   empty.reset(64);
   work.reset(64);
-  work.addTriangle(box(120, 0, 130, 63), kRegion);  // right of the region
-  work.addTriangle(box(0, 0, 99, 63), Rect{0, 0, 0, 64});  // an empty region
-  work.addTriangle({120, 0, 130, 63, 10, 300}, kRegion);  // a tall one right of the region
+  work.addTriangle(box(120, 0, 130, 63), kShort, kRegion, true);  // right of the region
+  work.addTriangle(box(0, 0, 99, 63), kShort, Rect{0, 0, 0, 64}, true);  // an empty region
+  work.addTriangle({120, 0, 130, 63}, shape(10, 300), kRegion, true);  // a tall one right of the region
   work.addClear(Rect{0, 0, 0, 64});
   std::vector<int> a, b;
   CHECK(work.split(0, 63, 3, 4, a) == empty.split(0, 63, 3, 4, b));
@@ -73,13 +82,14 @@ TEST_CASE("triangles and clears outside the region count nothing", "[raster][ban
 TEST_CASE("counts of groups of triangles add up to the count of all of them", "[raster][bands]") {
   // assembleQueued counts each group's triangles on its own thread and the flush adds them.
   // Short ones and tall ones (41 and 34 rows), one reaching out of the region.
-  const std::vector<SetupBounds> triangles{box(0, 0, 99, 5), {10, 20, 30, 60, 50, 400}, box(-5, 40, 200, 45),
-                                           box(50, 7, 51, 7), {3, 30, 190, 63, 31, 2500}};
+  const std::vector<SetupBounds> triangles{box(0, 0, 99, 5), {10, 20, 30, 60}, box(-5, 40, 200, 45), box(50, 7, 51, 7),
+                                           {3, 30, 190, 63}};
+  const std::vector<TriangleSetup> setups{kShort, shape(50, 400), kShort, kShort, shape(31, 2500)};
   RowWork all, groupA, groupB;
   for (RowWork* w : {&all, &groupA, &groupB}) w->reset(64);
   for (size_t i = 0; i < triangles.size(); ++i) {
-    all.addTriangle(triangles[i], kRegion);
-    (i % 2 ? groupA : groupB).addTriangle(triangles[i], kRegion);
+    all.addTriangle(triangles[i], setups[i], kRegion, true);
+    (i % 2 ? groupA : groupB).addTriangle(triangles[i], setups[i], kRegion, true);
   }
   all.addClear(Rect{0, 8, 100, 20});
   groupB.addClear(Rect{0, 8, 100, 20});
@@ -100,18 +110,18 @@ TEST_CASE("a reset count forgets every triangle, clear and added count, over the
   RowWork fresh, reused, other;
   fresh.reset(64);
   other.reset(64);
-  other.addTriangle(box(10, 40, 60, 63), kRegion);
+  other.addTriangle(box(10, 40, 60, 63), kShort, kRegion, true);
   reused.reset(64);
-  reused.addTriangle(box(0, 0, 99, 20), kRegion);
-  reused.addTriangle({0, 0, 99, 40, 30, 1500}, kRegion);  // tall: its ramps must be forgotten too
+  reused.addTriangle(box(0, 0, 99, 20), kShort, kRegion, true);
+  reused.addTriangle({0, 0, 99, 40}, shape(30, 1500), kRegion, true);  // tall: its ramps must be forgotten too
   reused.addClear(Rect{0, 30, 100, 10});
   reused.add(other);
   std::vector<int> a, b;
   REQUIRE(reused.split(0, 63, 3, 4, a) == 3);
   REQUIRE(a != std::vector<int>({0, 1, 2, 3}));
   reused.reset(64);
-  fresh.addTriangle(box(5, 8, 50, 30), kRegion);
-  reused.addTriangle(box(5, 8, 50, 30), kRegion);
+  fresh.addTriangle(box(5, 8, 50, 30), kShort, kRegion, true);
+  reused.addTriangle(box(5, 8, 50, 30), kShort, kRegion, true);
   CHECK(fresh.rowWeights(0, 63) == reused.rowWeights(0, 63));
   CHECK(fresh.split(0, 63, 3, 4, a) == reused.split(0, 63, 3, 4, b));
   CHECK(a == b);
@@ -119,8 +129,8 @@ TEST_CASE("a reset count forgets every triangle, clear and added count, over the
   RowWork taller;
   taller.reset(128);
   reused.reset(128);
-  taller.addTriangle(box(5, 100, 50, 120), Rect{0, 0, 100, 128});
-  reused.addTriangle(box(5, 100, 50, 120), Rect{0, 0, 100, 128});
+  taller.addTriangle(box(5, 100, 50, 120), kShort, Rect{0, 0, 100, 128}, true);
+  reused.addTriangle(box(5, 100, 50, 120), kShort, Rect{0, 0, 100, 128}, true);
   CHECK(taller.split(0, 127, 3, 4, a) == reused.split(0, 127, 3, 4, b));
   CHECK(a == b);
 }
@@ -131,10 +141,11 @@ TEST_CASE("a tall triangle's rows weigh by its shape: rising to its middle verte
   // 1280 (k + 1) up to 12800 on row 9. Falling over the 30 rows after it by 12800 / 31 = 412 (cut
   // to an integer) a row: row 10 weighs 412 × 30 = 12360, row 39 412. Each row 8 × 256 + 256 =
   // 2304 more, row 0 64 × 256 = 16384 more.
-  const SetupBounds t{0, 0, 99, 39, 9, 1000};
+  const SetupBounds t{0, 0, 99, 39};
+  const TriangleSetup s = shape(9, 1000);
   RowWork work;
   work.reset(64);
-  work.addTriangle(t, kRegion);
+  work.addTriangle(t, s, kRegion, true);
   std::vector<int64_t> w = work.rowWeights(0, 63);
   CHECK(w.at(0) == 1280 + 2304 + 16384);
   CHECK(w.at(4) == 1280 * 5 + 2304);
@@ -150,7 +161,7 @@ TEST_CASE("a tall triangle's rows weigh by its shape: rising to its middle verte
   // 22 … 39 fall from 7416 to 412 and rows 10 … 21 stay at 7680.
   RowWork narrow;
   narrow.reset(64);
-  narrow.addTriangle(t, Rect{0, 0, 30, 64});
+  narrow.addTriangle(t, s, Rect{0, 0, 30, 64}, true);
   w = narrow.rowWeights(0, 63);
   CHECK(w.at(4) == 6400 + 2304);
   CHECK(w.at(5) == 7680 + 2304);
@@ -164,7 +175,7 @@ TEST_CASE("a tall triangle's rows weigh by its shape: rising to its middle verte
   // triangle's 64 pixels), and nothing of it is left after row 39.
   RowWork upper;
   upper.reset(64);
-  upper.addTriangle(t, Rect{0, 20, 100, 44});
+  upper.addTriangle(t, s, Rect{0, 20, 100, 44}, true);
   w = upper.rowWeights(20, 63);
   CHECK(w.at(0) == 8240 + 2304 + 16384);
   CHECK(w.at(19) == 412 + 2304);
@@ -178,7 +189,7 @@ TEST_CASE("bands follow a tall triangle's shape, not its box", "[raster][bands]"
   // after row 24 593984). By its box the rows would weigh alike and the cut fall after row 38.
   RowWork work;
   work.reset(64);
-  work.addTriangle({0, 0, 99, 63, 0, 3200}, kRegion);
+  work.addTriangle({0, 0, 99, 63}, shape(0, 3200), kRegion, true);
   const std::vector<int64_t> w = work.rowWeights(0, 63);
   int64_t total = 0;
   for (int64_t x : w) total += x;
@@ -186,4 +197,19 @@ TEST_CASE("bands follow a tall triangle's shape, not its box", "[raster][bands]"
   std::vector<int> first;
   CHECK(work.split(0, 63, 2, 4, first) == 2);
   CHECK(first == std::vector<int>{0, 26, 64});
+}
+
+TEST_CASE("a tall triangle not weighed by its shape weighs half its box on every row", "[raster][bands]") {
+  // A flush of many setups (RowWork::weighsShapes) leaves the shapes out: rows 0 … 39 weigh half
+  // the box's 100 pixels, 50, plus 8, plus 1; row 0 64 more.
+  RowWork work;
+  work.reset(64);
+  work.addTriangle({0, 0, 99, 39}, shape(9, 1000), kRegion, false);
+  const std::vector<int64_t> w = work.rowWeights(0, 63);
+  CHECK(w.at(0) == (50 + 8 + 64 + 1) * 256);
+  CHECK(w.at(9) == (50 + 8 + 1) * 256);
+  CHECK(w.at(39) == (50 + 8 + 1) * 256);
+  CHECK(w.at(40) == 256);
+  CHECK(RowWork::weighsShapes(382));
+  CHECK_FALSE(RowWork::weighsShapes(27000));
 }
