@@ -31,18 +31,17 @@ class RowWork {
   // A triangle drawn inside `region`: on each of its rows the pixels it covers there and a row's
   // fixed cost, once its fixed cost. Difference lists (each triangle writes a few entries, not
   // one per row), so that a group of triangles on one thread can be counted on its own and added
-  // to the others (add). A triangle of fewer than kShapedRows rows, or any
-  // with byShape false, weighs each row by half its box's width in the region (its rows' mean,
-  // about); a taller
-  // one by its shape — widest at its middle vertex's row, narrowing linearly to its top and bottom
-  // rows — cut to the region's width.
-  // The setup is read only for a triangle weighed by its shape (its vertices' rows and its area).
+  // to the others (add). With byShape, a triangle of kShapedRows rows or more weighs each row by
+  // its shape — widest at its middle vertex's row, narrowing linearly to its top and bottom rows —
+  // cut to the region's width, and a shorter one by half its box's width in the region (its rows'
+  // mean, about); without, every triangle weighs each row by its box's width in the region. The
+  // setup is read only for a triangle weighed by its shape (its vertices' rows and its area).
   void addTriangle(const SetupBounds& t, const TriangleSetup& setup, const Rect& region, bool byShape) {
     const int top = std::min(t.maxY, region.y + region.height - 1), bottom = std::max(t.minY, region.y);
     const int64_t width = int64_t(std::min(t.maxX, region.x + region.width - 1)) - std::max(t.minX, region.x) + 1;
     if (bottom > top || width <= 0) return;
     const bool shaped = byShape && t.maxY - t.minY + 1 >= kShapedRows;
-    const int64_t row = ((shaped ? 0 : (width + 1) >> 1) + kRowCost) * kUnit;
+    const int64_t row = ((shaped ? 0 : byShape ? (width + 1) >> 1 : width) + kRowCost) * kUnit;
     diff_[size_t(bottom)] += row + kTriangleCost * kUnit;
     diff_[size_t(bottom) + 1] -= kTriangleCost * kUnit;
     diff_[size_t(top) + 1] -= row;
@@ -50,9 +49,9 @@ class RowWork {
     if (shaped) addShape(t, setup, bottom, top, width);
   }
   // Whether a flush of this many setups is weighed by the triangles' shapes: a pass of many small
-  // triangles (the pumpkins' 27 000) evens out what their boxes get wrong, and the shapes' ramps
-  // would cost it 2 % more instructions at two threads; a pass of a few hundred large ones (the
-  // room's walls and volume sides) is where a box gives a band the wrong share.
+  // triangles (the pumpkins' 27 000) evens out what their boxes get wrong, and weighing their
+  // shapes would cost it more than its bands gain; a pass of a few hundred large ones (the room's
+  // walls and volume sides) is where a box gives a band the wrong share.
   static bool weighsShapes(size_t setups) { return setups <= 4096; }
   // A cleared rectangle: a cleared row costs about a quarter of a drawn one.
   void addClear(const Rect& region);

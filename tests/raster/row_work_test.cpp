@@ -199,17 +199,21 @@ TEST_CASE("bands follow a tall triangle's shape, not its box", "[raster][bands]"
   CHECK(first == std::vector<int>{0, 26, 64});
 }
 
-TEST_CASE("a tall triangle not weighed by its shape weighs half its box on every row", "[raster][bands]") {
-  // A flush of many setups (RowWork::weighsShapes) leaves the shapes out: rows 0 … 39 weigh half
-  // the box's 100 pixels, 50, plus 8, plus 1; row 0 64 more.
+TEST_CASE("without shapes every triangle weighs its box's width on every row", "[raster][bands]") {
+  // A flush of many setups (RowWork::weighsShapes) leaves the shapes out: rows 0 … 39 of the tall
+  // triangle weigh its box's 100 pixels, plus 8, plus 1, row 0 64 more; the short one (rows 50 …
+  // 59, 10 pixels wide in the region) 10 + 8 + 1.
   RowWork work;
   work.reset(64);
   work.addTriangle({0, 0, 99, 39}, shape(9, 1000), kRegion, false);
+  work.addTriangle(box(-10, 50, 9, 59), kShort, kRegion, false);
   const std::vector<int64_t> w = work.rowWeights(0, 63);
-  CHECK(w.at(0) == (50 + 8 + 64 + 1) * 256);
-  CHECK(w.at(9) == (50 + 8 + 1) * 256);
-  CHECK(w.at(39) == (50 + 8 + 1) * 256);
+  CHECK(w.at(0) == (100 + 8 + 64 + 1) * 256);
+  CHECK(w.at(9) == (100 + 8 + 1) * 256);
+  CHECK(w.at(39) == (100 + 8 + 1) * 256);
   CHECK(w.at(40) == 256);
+  CHECK(w.at(50) == (10 + 8 + 64 + 1) * 256);
+  CHECK(w.at(59) == (10 + 8 + 1) * 256);
   CHECK(RowWork::weighsShapes(382));
   CHECK_FALSE(RowWork::weighsShapes(27000));
 }
