@@ -122,7 +122,7 @@ class TargetTally {
     for (const RunTargets::Row& row : run.rows) {
       if (!row.indented) target = row.threshold || isYesNo(row) ? &row : nullptr;
       if (target && !row.indented) {
-        Counts& c = counts(row.what);
+        Counts& c = counts(row.what, row.what);
         for (size_t i = 0; i < row.cells.size(); ++i) c.add(i, cellMet(row.cells[i]));
         if (isTwoThreads(row.what)) {
           twoThreadRows = true;
@@ -131,16 +131,17 @@ class TargetTally {
         }
       } else if (target && target->threshold && isTwoThreads(target->what)) {
         const double line = *target->threshold;
+        const std::string threshold = target->what.substr(target->what.find(" >= ") + 4);
         if (row.what.rfind("the host's capacity for two threads", 0) == 0) {
-          Counts& room = counts(target->what + "|capacity at or above");
-          Counts& none = counts(target->what + "|capacity below");
+          Counts& room = counts(target->what + "|room", "  where the host's capacity was >= " + threshold);
+          Counts& none = counts(target->what + "|none", "  where it was below " + threshold);
           for (size_t i = 0; i < row.cells.size() && i < target->cells.size(); ++i) {
             const std::optional<double> capacity = tally_detail::leadingNumber(row.cells[i]);
             if (!capacity) continue;
             (*capacity >= line ? room : none).add(i, cellMet(target->cells[i]));
           }
         } else if (row.what.rfind("llvmpipe's 2 threads / 1", 0) == 0) {
-          Counts& c = counts(target->what + "|llvmpipe");
+          Counts& c = counts(target->what + "|llvmpipe", "  llvmpipe's 2 threads / 1 >= " + threshold + ", same runs");
           for (size_t i = 0; i < row.cells.size(); ++i) {
             const std::optional<double> v = tally_detail::leadingNumber(row.cells[i]);
             if (!v) continue;
@@ -162,18 +163,7 @@ class TargetTally {
   std::string text() const {
     std::string out = "Issue 7's targets over " + std::to_string(runs_.size()) +
                       " runs: in how many runs each figure was met\n" + targetLine("target", columns_);
-    for (const std::string& what : order_) {
-      const size_t bar = what.find('|');
-      if (bar == std::string::npos) {
-        out += targetLine(what, cellsOf(what));
-        continue;
-      }
-      const std::string part = what.substr(bar + 1), base = what.substr(0, bar);
-      const std::string threshold = base.substr(base.find(" >= ") + 4);
-      if (part == "capacity at or above") out += targetLine("  where the host's capacity was >= " + threshold, cellsOf(what));
-      else if (part == "capacity below") out += targetLine("  where it was below " + threshold, cellsOf(what));
-      else out += targetLine("  llvmpipe's 2 threads / 1 >= " + threshold + ", same runs", cellsOf(what));
-    }
+    for (const std::string& key : order_) out += targetLine(counts_.at(key).label, cellsOf(key));
     if (twoThreadRuns_ > 0)
       out += "runs with every two-thread figure met: shadowref " + std::to_string(allTwoThreads_) + ", llvmpipe " +
              std::to_string(allLlvmpipe_) + " (of " + std::to_string(twoThreadRuns_) + ")\n";
@@ -186,6 +176,7 @@ class TargetTally {
 
  private:
   struct Counts {
+    std::string label;
     std::vector<int> met, seen;
     void add(size_t column, bool ok) {
       if (met.size() <= column) {
@@ -206,9 +197,14 @@ class TargetTally {
   }
   static bool isTwoThreads(const std::string& what) { return what.find("2 threads / 1 >= ") != std::string::npos; }
 
-  Counts& counts(const std::string& what) {
-    auto [it, added] = counts_.try_emplace(what);
-    if (added) order_.push_back(what);
+  // The count kept under `key`, printed as `label` (a target row's own label, or the label of a
+  // line under it).
+  Counts& counts(const std::string& key, const std::string& label) {
+    auto [it, added] = counts_.try_emplace(key);
+    if (added) {
+      order_.push_back(key);
+      it->second.label = label;
+    }
     return it->second;
   }
   std::vector<std::string> cellsOf(const std::string& what) const {
