@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The trade, measured (issue 6): builds the bench program bench/tradeoffs (the target tradeoffs of
-# a shadowref build), runs every configuration (a few minutes on an idle 2-core machine), and
+# a shadowref build), runs every configuration (ten minutes or so on a 2-core machine), and
 # writes bench/results/tradeoffs.csv, docs/tradeoffs.md and docs/images/tradeoff-*.png.
 #   bash scripts/setup.sh build && bash scripts/bench-tradeoffs.sh [BUILD_DIR] [tradeoffs options...]
-# Options: --frames N (timed frames, default 5), --threads N (render threads, default 1),
+# Options: --frames N (timed frames a probe, default 5), --rounds N (probes of every configuration,
+# in alternating order, default 5), --threads N (render threads, default 1),
 # --samples N (soft reference rays per pixel, default 256), --only GROUP (counting, soft, houses,
 # lights, map_size, pcf, bias, depth, far; the outputs then hold that group alone).
 set -euo pipefail

@@ -73,13 +73,13 @@ void markParetoFronts(std::vector<Row>& rows) {
 
 void writeCsv(const std::string& path, const RunInfo& info, const std::vector<Row>& rows) {
   std::ofstream out(path);
-  out << "group,scene,variant,method,overrides,width,height,threads,frames,lights_rendered,cpu_median_ms,cpu_min_ms,cpu_max_ms,"
+  out << "group,scene,variant,method,overrides,width,height,threads,frames,rounds,lights_rendered,cpu_median_ms,cpu_min_ms,cpu_max_ms,"
          "peak_rss_kib,wall_median_ms,reference,pixels,mae,wrong,wrong_off_edges,reference_shadowed,plot,pareto,note\n";
   for (const Row& r : rows) {
     const Experiment& e = r.experiment;
     out << csvField(e.group) << ',' << csvField(e.scene) << ',' << csvField(e.variant) << ',' << e.method << ','
         << csvField(join(e.overrides, " ")) << ',' << info.size.width << ',' << info.size.height << ',' << info.threads
-        << ',' << info.frames << ',' << r.lightsRendered << ',';
+        << ',' << info.frames << ',' << info.rounds << ',' << r.lightsRendered << ',';
     if (r.timing.ok)
       out << fixed(r.timing.medianMs, 3) << ',' << fixed(r.timing.minMs, 3) << ',' << fixed(r.timing.maxMs, 3) << ','
           << r.timing.peakRssKiB << ',' << fixed(r.timing.wallMedianMs, 3) << ',';
@@ -324,14 +324,20 @@ void writeMarkdown(const std::string& path, const RunInfo& info, const std::vect
   out << "- **Machine**: " << info.cpu << ", " << info.cores << " cores (nproc); **" << info.threads
       << " render thread" << (info.threads == 1 ? "" : "s") << "**; commit `" << info.commit << "`; " << info.date
       << "; the whole run took " << fixed(info.wallSeconds / 60.0, 1) << " min.\n"
-      << "- **Load**: the machine was shared with other builds and tests while this ran (load average before: `"
-      << info.loadBefore << "`, after: `" << info.loadAfter
-      << "`). CPU time and medians blunt that, not wholly (caches and memory bandwidth are shared): read "
-         "differences under about 15 % as noise.\n"
-      << "- **Time**: median **CPU time** per frame (`CLOCK_PROCESS_CPUTIME_ID`) of " << info.frames
-      << " frames of `renderFrame` after one warm-up frame, every configuration in a fresh child process "
-         "(`tradeoffs --probe`). CPU time, not wall time, because on this loaded machine wall time swung by 2× "
-         "between identical configurations run a minute apart; the CSV keeps the wall-time median too. "
+      << "- **Load**: load average before: `" << info.loadBefore << "`, after: `" << info.loadAfter
+      << "`. The machine is a virtual one on a shared host that runs at two speeds about 1.5× apart and "
+         "switches between them within minutes; the rounds below blunt that, not wholly (caches and memory "
+         "bandwidth are shared too): read differences under about 15 % as noise.\n"
+      << "- **Time**: **CPU time** per frame (`CLOCK_PROCESS_CPUTIME_ID`), every configuration in a fresh child "
+         "process (`tradeoffs --probe`) that renders one warm-up frame and then "
+      << info.frames << " timed frames of `renderFrame`, its median the probe's time. Every configuration is "
+         "probed once in each of "
+      << info.rounds
+      << " rounds, all configurations in one order in a round and in the reverse order in the next, so that "
+         "the host's changes of speed hit every configuration alike; the time in the tables is the median of "
+         "its rounds' medians (`bench/tradeoffs/round_timing.h`). CPU time, not wall time: the time a probe "
+         "waits while another process of this machine holds its core is not charged to it; the CSV keeps the wall-time median too, and the "
+         "fastest and slowest frame of any round. "
          "Images are **"
       << info.size.width << "×" << info.size.height
       << "** (the documents used 800×640), so absolute times are not theirs; ratios are what compares.\n"

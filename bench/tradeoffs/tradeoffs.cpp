@@ -2,8 +2,8 @@
 // process (median time per frame, peak memory) and compared with ground truth in this one (the
 // ray-cast oracle for hard shadows, an area-light reference for soft ones).
 //
-//   tradeoffs [--scenes DIR] [--csv FILE] [--plots DIR] [--doc FILE] [--frames N] [--threads N]
-//             [--samples N] [--only GROUP] [--commit TEXT]
+//   tradeoffs [--scenes DIR] [--csv FILE] [--plots DIR] [--doc FILE] [--frames N] [--rounds N]
+//             [--threads N] [--samples N] [--only GROUP] [--commit TEXT]
 //   tradeoffs --probe SCENE METHOD THREADS FRAMES [key=value overrides...]   (the child)
 #include <unistd.h>
 
@@ -22,6 +22,7 @@
 #include "shadow/soft_lights.h"
 #include "tradeoffs/experiments.h"
 #include "tradeoffs/report.h"
+#include "tradeoffs/round_timing.h"
 #include "tradeoffs/shadow_error.h"
 #include "tradeoffs/timing_probe.h"
 
@@ -33,7 +34,7 @@ namespace {
 struct Args {
   std::string scenes = "scenes", csv = "bench/results/tradeoffs.csv", plots = "bench/results",
               doc = "docs/tradeoffs.md", only, commit = "unknown";
-  int frames = 5, threads = 1, samples = 256;
+  int frames = 5, rounds = 5, threads = 1, samples = 256;
 };
 
 std::string selfPath() {
@@ -71,6 +72,7 @@ bool parseArgs(int argc, char** argv, Args& a) {
     else if (k == "--only") a.only = value();
     else if (k == "--commit") a.commit = value();
     else if (k == "--frames") a.frames = std::stoi(value());
+    else if (k == "--rounds") a.rounds = std::stoi(value());
     else if (k == "--threads") a.threads = std::stoi(value());
     else if (k == "--samples") a.samples = std::stoi(value());
     else {
@@ -78,14 +80,18 @@ bool parseArgs(int argc, char** argv, Args& a) {
       return false;
     }
   }
+  if (a.frames < 1 || a.rounds < 1) throw std::runtime_error("--frames and --rounds need at least 1");
   return true;
 }
 
-Row measure(const Experiment& e, const Args& a, const std::string& self) {
+std::string sceneFile(const Experiment& e, const Args& a) { return a.scenes + "/" + e.scene + ".yaml"; }
+
+// The configuration's shadow against its reference (deterministic: measured once) and the lights
+// it renders; the timing is measured apart, in rounds (timeInRounds).
+Row measureError(const Experiment& e, const Args& a) {
   Row row;
   row.experiment = e;
-  const std::string file = a.scenes + "/" + e.scene + ".yaml";
-  row.timing = runProbe(self, ProbeRequest{file, e.method, e.overrides, a.threads, a.frames});
+  const std::string file = sceneFile(e, a);
   try {
     LoadOptions load;
     load.overrides = e.overrides;
@@ -104,6 +110,21 @@ Row measure(const Experiment& e, const Args& a, const std::string& self) {
     row.errorMessage = ex.what();
   }
   return row;
+}
+
+// Every row's configuration probed once per round in alternating order (round_timing.h), then
+// its rounds combined.
+void timeInRounds(std::vector<Row>& rows, const Args& a, const std::string& self) {
+  std::vector<std::vector<ProbeResult>> probes(rows.size());
+  for (int round = 0; round < a.rounds; ++round) {
+    for (size_t k = 0; k < rows.size(); ++k) {
+      const size_t i = alternatingIndex(k, rows.size(), round);
+      const Experiment& e = rows[i].experiment;
+      probes[i].push_back(runProbe(self, ProbeRequest{sceneFile(e, a), e.method, e.overrides, a.threads, a.frames}));
+    }
+    std::fprintf(stderr, "tradeoffs: timing round %d of %d done\n", round + 1, a.rounds);
+  }
+  for (size_t i = 0; i < rows.size(); ++i) rows[i].timing = combineRounds(probes[i]);
 }
 
 }  // namespace
@@ -125,6 +146,7 @@ int main(int argc, char** argv) {
   info.cores = static_cast<int>(std::thread::hardware_concurrency());
   info.threads = args.threads;
   info.frames = args.frames;
+  info.rounds = args.rounds;
   info.referenceSamples = args.samples;
   info.loadBefore = firstLine("/proc/loadavg");
   info.date = today();
@@ -136,13 +158,16 @@ int main(int argc, char** argv) {
     if (!args.only.empty() && e.group != args.only) continue;
     std::fprintf(stderr, "tradeoffs: %-9s %-10s %-26s %-9s", e.group.c_str(), e.scene.c_str(), e.variant.c_str(),
                  e.method.c_str());
-    Row row = measure(e, args, self);
-    if (row.timing.ok) std::fprintf(stderr, " %9.2f ms", row.timing.medianMs);
-    else std::fprintf(stderr, " timing failed: %s", row.timing.error.c_str());
+    Row row = measureError(e, args);
     if (row.errorMessage.empty()) std::fprintf(stderr, "  mae %.4f wrong %.4f\n", row.error.mae, row.error.wrong);
     else std::fprintf(stderr, "  error failed: %s\n", row.errorMessage.c_str());
     rows.push_back(std::move(row));
   }
+  timeInRounds(rows, args, self);
+  for (const Row& row : rows)
+    if (!row.timing.ok)
+      std::fprintf(stderr, "tradeoffs: %s %s %s: timing failed: %s\n", row.experiment.scene.c_str(),
+                   row.experiment.variant.c_str(), row.experiment.method.c_str(), row.timing.error.c_str());
   markParetoFronts(rows);
   info.loadAfter = firstLine("/proc/loadavg");
   info.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
