@@ -73,7 +73,7 @@ void markParetoFronts(std::vector<Row>& rows) {
 
 void writeCsv(const std::string& path, const RunInfo& info, const std::vector<Row>& rows) {
   std::ofstream out(path);
-  out << "group,scene,variant,method,overrides,width,height,threads,frames,rounds,lights_rendered,cpu_median_ms,cpu_min_ms,cpu_max_ms,"
+  out << "group,scene,variant,method,overrides,width,height,threads,frames,rounds,lights_rendered,cpu_ms,cpu_rounds_median_ms,cpu_min_ms,cpu_max_ms,"
          "peak_rss_kib,wall_median_ms,reference,pixels,mae,wrong,wrong_off_edges,reference_shadowed,plot,pareto,note\n";
   for (const Row& r : rows) {
     const Experiment& e = r.experiment;
@@ -81,9 +81,10 @@ void writeCsv(const std::string& path, const RunInfo& info, const std::vector<Ro
         << csvField(join(e.overrides, " ")) << ',' << info.size.width << ',' << info.size.height << ',' << info.threads
         << ',' << info.frames << ',' << info.rounds << ',' << r.lightsRendered << ',';
     if (r.timing.ok)
-      out << fixed(r.timing.medianMs, 3) << ',' << fixed(r.timing.minMs, 3) << ',' << fixed(r.timing.maxMs, 3) << ','
-          << r.timing.peakRssKiB << ',' << fixed(r.timing.wallMedianMs, 3) << ',';
-    else out << ",,,,,";
+      out << fixed(r.timing.medianMs, 3) << ',' << fixed(r.timing.roundsMedianMs, 3) << ','
+          << fixed(r.timing.minMs, 3) << ',' << fixed(r.timing.maxMs, 3) << ',' << r.timing.peakRssKiB << ','
+          << fixed(r.timing.wallMedianMs, 3) << ',';
+    else out << ",,,,,,";
     out << name(e.reference) << ',';
     if (r.errorMessage.empty())
       out << r.error.pixels << ',' << fixed(r.error.mae, 6) << ',' << fixed(r.error.wrong, 6) << ','
@@ -102,8 +103,8 @@ void writePlotData(const std::string& directory, const std::vector<Row>& rows) {
     std::sort(members.begin(), members.end(),
               [](const Row* a, const Row* b) { return a->timing.medianMs < b->timing.medianMs; });
     std::ofstream all(directory + "/plot-" + plot + ".dat"), front(directory + "/plot-" + plot + "-front.dat");
-    all << "# cpu_median_ms mae_percent label\n";
-    front << "# cpu_median_ms mae_percent label\n";
+    all << "# cpu_ms mae_percent label\n";
+    front << "# cpu_ms mae_percent label\n";
     for (const Row* r : members) {
       const std::string line = fixed(r->timing.medianMs, 3) + " " + fixed(100.0 * r->error.mae, 4) + " \"" +
                                r->experiment.method + " " + r->experiment.variant + "\"\n";
@@ -330,14 +331,16 @@ void writeMarkdown(const std::string& path, const RunInfo& info, const std::vect
          "bandwidth are shared too): read differences under about 15 % as noise.\n"
       << "- **Time**: **CPU time** per frame (`CLOCK_PROCESS_CPUTIME_ID`), every configuration in a fresh child "
          "process (`tradeoffs --probe`) that renders one warm-up frame and then "
-      << info.frames << " timed frames of `renderFrame`, its median the probe's time. Every configuration is "
+      << info.frames << " timed frames of `renderFrame`, their median the probe's time. Every configuration is "
          "probed once in each of "
       << info.rounds
-      << " rounds, all configurations in one order in a round and in the reverse order in the next, so that "
-         "the host's changes of speed hit every configuration alike; the time in the tables is the median of "
-         "its rounds' medians (`bench/tradeoffs/round_timing.h`). CPU time, not wall time: the time a probe "
-         "waits while another process of this machine holds its core is not charged to it; the CSV keeps the wall-time median too, and the "
-         "fastest and slowest frame of any round. "
+      << " rounds, each round starting a step further down the list, so that a configuration's probes lie "
+         "spread over the whole run; the time in the tables is its **fastest round's** median "
+         "(`bench/tradeoffs/round_timing.h`): a frame's work is fixed and the host only adds to it, and a "
+         "median over the rounds still showed the slower speed wherever it held for most of a configuration's "
+         "probes. The CSV keeps the median of the rounds' medians too (`cpu_rounds_median_ms`), the wall-time "
+         "median, and the fastest and slowest frame of any round. CPU time, not wall time: the time a probe "
+         "waits while another process of this machine holds its core is not charged to it. "
          "Images are **"
       << info.size.width << "×" << info.size.height
       << "** (the documents used 800×640), so absolute times are not theirs; ratios are what compares.\n"

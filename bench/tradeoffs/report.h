@@ -26,7 +26,7 @@ struct RunInfo {
   int cores = 0;
   int threads = 1;
   int frames = 5;
-  int rounds = 5;  // alternating rounds of probes per configuration (round_timing.h)
+  int rounds = 5;  // rounds of probes of every configuration (round_timing.h)
   int referenceSamples = 256;
   BenchSize size;
   long baselineRssKiB = 0;

@@ -112,13 +112,13 @@ Row measureError(const Experiment& e, const Args& a) {
   return row;
 }
 
-// Every row's configuration probed once per round in alternating order (round_timing.h), then
-// its rounds combined.
+// Every row's configuration probed once per round, each round a step further down the list
+// (round_timing.h), then its rounds combined.
 void timeInRounds(std::vector<Row>& rows, const Args& a, const std::string& self) {
   std::vector<std::vector<ProbeResult>> probes(rows.size());
   for (int round = 0; round < a.rounds; ++round) {
     for (size_t k = 0; k < rows.size(); ++k) {
-      const size_t i = alternatingIndex(k, rows.size(), round);
+      const size_t i = rotatedIndex(k, rows.size(), round, a.rounds);
       const Experiment& e = rows[i].experiment;
       probes[i].push_back(runProbe(self, ProbeRequest{sceneFile(e, a), e.method, e.overrides, a.threads, a.frames}));
     }
