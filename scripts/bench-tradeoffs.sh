@@ -29,7 +29,7 @@ if ! command -v gnuplot >/dev/null; then
   exit 0
 fi
 terminal='set terminal pngcairo size 960,620 font "DejaVu Sans,10"'
-axes='set grid; set key top right; set logscale x; set xlabel "CPU time per frame, fastest round (ms; 400x320, 1 render thread)"'
+axes='set grid; set key top right; set logscale x; set xlabel "median CPU time per frame (ms; 400x320, 1 render thread)"'
 for data in bench/results/plot-*.dat; do
   case "$data" in *-front.dat) continue ;; esac
   name=$(basename "$data" .dat)
@@ -58,7 +58,7 @@ set grid; set key top center
 set title "outdoor: standard shadow map and TSM against map size (002 §6.1)"
 set logscale x 2; set xlabel "map size (texels per side)"
 set ylabel "wrongly shadowed or lit pixels (%)"
-set y2label "CPU time per frame, fastest round (ms)"; set y2tics; set logscale y2; set ytics nomirror
+set y2label "median CPU time per frame (ms)"; set y2tics; set logscale y2; set ytics nomirror
 plot "bench/results/series-map-size.dat" using 1:3 with linespoints lw 2 pt 7 title "standard: error", \
      "" using 1:5 with linespoints lw 2 pt 5 title "TSM: error", \
      "" using 1:2 axes x1y2 with linespoints dt 2 pt 6 title "standard: time", \
@@ -71,7 +71,7 @@ $terminal
 set output "docs/images/tradeoff-houses.png"
 set grid; set key top left; set datafile missing "—"
 set title "city, one light: time per frame against houses (000 §5.4.1)"
-set xlabel "houses"; set ylabel "CPU time per frame, fastest round (ms)"
+set xlabel "houses"; set ylabel "median CPU time per frame (ms)"
 plot "bench/results/series-houses.dat" using 1:2 with linespoints lw 2 title "random models, no shadows", \
      "" using 1:3 with linespoints lw 2 title "random models, z-pass", \
      "" using 1:4 with linespoints lw 2 title "Haus01, no shadows", \
@@ -84,7 +84,7 @@ $terminal
 set output "docs/images/tradeoff-lights.png"
 set grid; set key top left; set datafile missing "—"
 set title "city, 16 x Haus02: time per frame against lights (000 §5.4.1)"
-set xlabel "lights"; set ylabel "CPU time per frame, fastest round (ms)"
+set xlabel "lights"; set ylabel "median CPU time per frame (ms)"
 plot "bench/results/series-lights.dat" using 1:2 with linespoints lw 2 title "no shadows", \
      "" using 1:3 with linespoints lw 2 title "z-pass"
 EOF

@@ -22,9 +22,9 @@ struct ProbeResult {
   // than wall time, which also counts the time other processes hold the core.
   double medianMs = 0.0, minMs = 0.0, maxMs = 0.0;
   double wallMedianMs = 0.0;  // wall time per frame (steady_clock), for comparison
-  // Probes combined over rounds (round_timing.h): medianMs is then the fastest round's median,
-  // this the median of the rounds' medians.
-  double roundsMedianMs = 0.0;
+  // Probes combined over rounds (round_timing.h): medianMs is then the median of the rounds'
+  // medians, this the fastest round's.
+  double fastestRoundMs = 0.0;
   long peakRssKiB = 0;  // VmHWM of the child: binary, libraries, scene and every buffer
 };
 
