@@ -119,6 +119,7 @@ class TargetTally {
     const RunTargets::Row* target = nullptr;  // the last target row, for the rows indented under it
     std::vector<bool> twoThreadsMet(run.columns.size(), true), llvmpipeMet(run.columns.size(), true);
     bool twoThreadRows = false;
+    int twoThreadCells = 0, roomCells = 0;  // two-thread figures, and those with room beside them
     for (const RunTargets::Row& row : run.rows) {
       if (!row.indented) target = row.threshold || isYesNo(row) ? &row : nullptr;
       if (target && !row.indented) {
@@ -126,6 +127,7 @@ class TargetTally {
         for (size_t i = 0; i < row.cells.size(); ++i) c.add(i, cellMet(row.cells[i]));
         if (isTwoThreads(row.what)) {
           twoThreadRows = true;
+          twoThreadCells += int(row.cells.size());
           for (size_t i = 0; i < row.cells.size() && i < twoThreadsMet.size(); ++i)
             twoThreadsMet[i] = twoThreadsMet[i] && cellMet(row.cells[i]);
         }
@@ -139,6 +141,7 @@ class TargetTally {
             const std::optional<double> capacity = tally_detail::leadingNumber(row.cells[i]);
             if (!capacity) continue;
             (*capacity >= line ? room : none).add(i, cellMet(target->cells[i]));
+            roomCells += *capacity >= line;
           }
         } else if (row.what.rfind("llvmpipe's 2 threads / 1", 0) == 0) {
           Counts& c = counts(target->what + "|llvmpipe", "  llvmpipe's 2 threads / 1 >= " + threshold + ", same runs");
@@ -155,6 +158,10 @@ class TargetTally {
       ++twoThreadRuns_;
       allTwoThreads_ += std::all_of(twoThreadsMet.begin(), twoThreadsMet.end(), [](bool b) { return b; });
       allLlvmpipe_ += std::all_of(llvmpipeMet.begin(), llvmpipeMet.end(), [](bool b) { return b; });
+      if (roomCells == twoThreadCells) {
+        ++roomEverywhere_;
+        roomEverywhereAllMet_ += std::all_of(twoThreadsMet.begin(), twoThreadsMet.end(), [](bool b) { return b; });
+      }
     }
   }
 
@@ -166,7 +173,10 @@ class TargetTally {
     for (const std::string& key : order_) out += targetLine(counts_.at(key).label, cellsOf(key));
     if (twoThreadRuns_ > 0)
       out += "runs with every two-thread figure met: shadowref " + std::to_string(allTwoThreads_) + ", llvmpipe " +
-             std::to_string(allLlvmpipe_) + " (of " + std::to_string(twoThreadRuns_) + ")\n";
+             std::to_string(allLlvmpipe_) + " (of " + std::to_string(twoThreadRuns_) + ")\n" +
+             "runs with the host's capacity for two threads at or above the line in every two-thread cell: " +
+             std::to_string(roomEverywhere_) + " (every two-thread figure met in " + std::to_string(roomEverywhereAllMet_) +
+             " of them)\n";
     out += "figures met, run by run:\n";
     for (const RunLine& r : runs_)
       out += "  " + std::to_string(r.met) + " of " + std::to_string(r.checked) + "  " + r.name +
@@ -219,6 +229,7 @@ class TargetTally {
   std::map<std::string, Counts> counts_;
   std::vector<std::string> order_;
   int twoThreadRuns_ = 0, allTwoThreads_ = 0, allLlvmpipe_ = 0;
+  int roomEverywhere_ = 0, roomEverywhereAllMet_ = 0;  // runs whose every two-thread cell had room
 };
 
 }  // namespace shadowref::bench

@@ -91,6 +91,10 @@ TEST_CASE("tally: each figure met in how many runs, two threads / one by the hos
   // Every two-thread figure met in one run: shadowref in none (a: city short, b: room short, c:
   // city short); llvmpipe in none either (a: city 1.3, b: room 1.79, c: city 1.1).
   CHECK(text.find("runs with every two-thread figure met: shadowref 0, llvmpipe 0 (of 3)") != std::string::npos);
+  // Capacity at or above 1.8 in both cells: b alone (1.95 / 2.01; a's city 1.55, c's 1.75 / 1.52),
+  // and b's room was short (1.70).
+  CHECK(text.find("runs with the host's capacity for two threads at or above the line in every two-thread cell: 1 "
+                  "(every two-thread figure met in 0 of them)") != std::string::npos);
   // Per run: a 1.41/1.85/identical x2/0.991 = 5 of 7; b 1.41/1.92/identical/0.94 short = 3; c 5.
   CHECK(text.find("  5 of 7  a.txt (aaaaaaa)\n  3 of 7  b.txt (bbbbbbb)\n  5 of 7  c.txt (ccccccc)\n") != std::string::npos);
 }
@@ -100,6 +104,8 @@ TEST_CASE("tally: a run meeting every two-thread figure is counted, for each ren
   tally.add("a.txt", read(runText("aaaaaaa", 1.85, 1.92, 1.97, 2.01, 1.79, 1.85, true, 0.99)));
   tally.add("b.txt", read(runText("bbbbbbb", 1.85, 1.62, 1.97, 1.55, 1.9, 1.81, true, 0.99)));
   CHECK(tally.text().find("runs with every two-thread figure met: shadowref 1, llvmpipe 1 (of 2)") != std::string::npos);
+  // a had room in both cells (1.97 / 2.01) and met both; b's city had none (1.55).
+  CHECK(tally.text().find("in every two-thread cell: 1 (every two-thread figure met in 1 of them)") != std::string::npos);
 }
 
 }  // namespace shadowref::bench
