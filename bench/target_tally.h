@@ -155,12 +155,13 @@ class TargetTally {
       }
     }
     if (twoThreadRows) {
+      const bool allMet = std::all_of(twoThreadsMet.begin(), twoThreadsMet.end(), [](bool b) { return b; });
       ++twoThreadRuns_;
-      allTwoThreads_ += std::all_of(twoThreadsMet.begin(), twoThreadsMet.end(), [](bool b) { return b; });
+      allTwoThreads_ += allMet;
       allLlvmpipe_ += std::all_of(llvmpipeMet.begin(), llvmpipeMet.end(), [](bool b) { return b; });
       if (roomCells == twoThreadCells) {
         ++roomEverywhere_;
-        roomEverywhereAllMet_ += std::all_of(twoThreadsMet.begin(), twoThreadsMet.end(), [](bool b) { return b; });
+        roomEverywhereAllMet_ += allMet;
       }
     }
   }
