@@ -294,11 +294,7 @@ void Renderer::draw(const DrawCall& call) {
     });
   }
   corners_.base = nullptr;
-  PendingDraw pending;
-  pending.region = drawRegion(state, fb_);
-  pending.state = state;
-  pending.shader = call.shader;
-  pending.watch = watch_;
+  PendingDraw pending = pendingDrawFor(call);
   uint64_t culled = 0, clipped = 0;
   for (size_t c = 0; c < chunks; ++c) {
     culled += assembly_[c].stats.trianglesCulled;
@@ -308,6 +304,18 @@ void Renderer::draw(const DrawCall& call) {
   if (reuse && clipped == 0) keepForReuse(call, *reuse, pending.first, pendingSetups_.size() - pending.first, culled);
   if (drawn) pending_.push_back(pending);
   if (deferDepth_ == 0) flush();
+}
+
+// The call as a pending draw, before its setups are known: a copy of its state, its region,
+// shader and the work of its fragments, and the pixel history's watch.
+Renderer::PendingDraw Renderer::pendingDrawFor(const DrawCall& call) const {
+  PendingDraw pending;
+  pending.region = drawRegion(*call.state, fb_);
+  pending.state = *call.state;
+  pending.shader = call.shader;
+  pending.fragmentWork = call.shader ? call.shader->fragmentWork() : kPlainFragmentWork;
+  pending.watch = watch_;
+  return pending;
 }
 
 // Moves the setups the workspaces assembled into the pending lists, counts them, and fills in
@@ -383,11 +391,7 @@ bool Renderer::canReuse(const SetupReuse& r, const DrawCall& call) const {
 // The kept setups as a pending draw of this call's state: no assembly, and their rows' work is
 // counted at the flush.
 void Renderer::drawKeptSetups(const DrawCall& call, const SetupReuse& r) {
-  PendingDraw pending;
-  pending.region = drawRegion(*call.state, fb_);
-  pending.state = *call.state;
-  pending.shader = call.shader;
-  pending.watch = watch_;
+  PendingDraw pending = pendingDrawFor(call);
   pending.first = pendingSetups_.size();
   pendingSetups_.insert(pendingSetups_.end(), r.setups_.begin(), r.setups_.end());
   pendingBounds_.insert(pendingBounds_.end(), r.bounds_.begin(), r.bounds_.end());
@@ -426,11 +430,7 @@ void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int
   q.planes = planes;
   q.varyingCount = varyingCount;
   q.pending = pending_.size();
-  PendingDraw& pending = pending_.emplace_back();
-  pending.region = drawRegion(*call.state, fb_);
-  pending.state = *call.state;
-  pending.shader = call.shader;
-  pending.watch = watch_;
+  pending_.push_back(pendingDrawFor(call));
 }
 
 void Renderer::assembleQueued() {
@@ -533,7 +533,9 @@ void Renderer::assembleQueued() {
         std::copy(kept.setups_.begin(), kept.setups_.end(), pendingSetups_.begin() + std::ptrdiff_t(pending.first));
         std::copy(kept.bounds_.begin(), kept.bounds_.end(), pendingBounds_.begin() + std::ptrdiff_t(pending.first));
         const Rect region = pending.region;
-        for (size_t i = 0; i < kept.bounds_.size(); ++i) work.addTriangle(kept.bounds_[i], *kept.setups_[i], region, shapes);
+        const int fragmentWork = pending.fragmentWork;
+        for (size_t i = 0; i < kept.bounds_.size(); ++i)
+          work.addTriangle(kept.bounds_[i], *kept.setups_[i], region, shapes, fragmentWork);
       }
       return;
     }
@@ -547,9 +549,11 @@ void Renderer::assembleQueued() {
       const SpannedRows rows = rowsSpanned(bounds);
       piece.minY = rows.minY;
       piece.maxY = rows.maxY;
-      const Rect region = pending_[queued_[piece.draw].pending].region;
+      const PendingDraw& pending = pending_[queued_[piece.draw].pending];
+      const Rect region = pending.region;
+      const int fragmentWork = pending.fragmentWork;
       const TriangleSetup* setups = ws.setups.data() + next;
-      for (size_t k = 0; k < bounds.size(); ++k) work.addTriangle(bounds[k], setups[k], region, shapes);
+      for (size_t k = 0; k < bounds.size(); ++k) work.addTriangle(bounds[k], setups[k], region, shapes, fragmentWork);
       next = piece.setupsEnd;
     }
   });
@@ -722,12 +726,43 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
   for (PendingDraw& draw : pending_) {
     if (draw.workCounted) continue;
     for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
-      rowWork_.addTriangle(pendingBounds_[i], *pendingSetups_[i], draw.region, byShape);
+      rowWork_.addTriangle(pendingBounds_[i], *pendingSetups_[i], draw.region, byShape, draw.fragmentWork);
     }
     draw.workCounted = true;
   }
   for (const PendingClear& c : pendingClears_) rowWork_.addClear(c.region);
+  if (const StencilFaceState* gate = stencilGate()) {
+    rowWork_.weighByStencil(fb_.stencil().data(), fb_.width(), minY, maxY, gate->mask,
+                            uint8_t(std::clamp(gate->ref, 0, 255)), gate->func == CompareFunc::Equal);
+  }
   return rowWork_.split(minY, maxY, maxBands, kMinBandRows, bandFirstRow_);
+}
+
+namespace {
+bool writesStencil(const StencilFaceState& s) {
+  return s.writeMask != 0 &&
+         (s.sfail != StencilOp::Keep || s.dpfail != StencilOp::Keep || s.dppass != StencilOp::Keep);
+}
+bool sameTest(const StencilFaceState& a, const StencilFaceState& b) {
+  return a.func == b.func && std::clamp(a.ref, 0, 255) == std::clamp(b.ref, 0, 255) && a.mask == b.mask;
+}
+}  // namespace
+
+// The stencil test every pending draw passes by, for both faces, when it is "equal to" or "not
+// equal to" a value and nothing in the flush writes the stencil (no draw, no clear): the buffer
+// read before the bands start is the one the draws test against. nullptr otherwise.
+const StencilFaceState* Renderer::stencilGate() const {
+  if (!fb_.hasStencil() || pending_.empty()) return nullptr;
+  for (const PendingClear& c : pendingClears_)
+    if (c.request.stencil) return nullptr;
+  const StencilFaceState& gate = pending_.front().state.stencil[FrontFacing];
+  if (gate.func != CompareFunc::Equal && gate.func != CompareFunc::NotEqual) return nullptr;
+  for (const PendingDraw& d : pending_) {
+    if (!d.state.stencilTest) return nullptr;
+    for (const StencilFaceState& face : d.state.stencil)
+      if (!sameTest(face, gate) || writesStencil(face)) return nullptr;
+  }
+  return &gate;
 }
 
 void Renderer::flush() {

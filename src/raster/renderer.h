@@ -135,6 +135,7 @@ class Renderer {
   struct PendingDraw {
     RenderState state;
     const FragmentShader* shader = nullptr;
+    int fragmentWork = kPlainFragmentWork;  // the shader's, for the bands' estimate (RowWork)
     PixelWatch watch;     // the pixel history's watch with this draw's index and tag
     Rect region;          // drawRegion of the state
     size_t first = 0, count = 0;  // its setups in pendingSetups_
@@ -142,6 +143,7 @@ class Renderer {
     bool workCounted = false;     // its setups are in rowWork_ (assembleQueued counted them)
   };
   friend class DeferredDraws;
+  PendingDraw pendingDrawFor(const DrawCall& call) const;
   bool collectSetups(std::span<AssemblyWorkspace> workspaces, PendingDraw& pending);
   void keepBlock(AssemblyWorkspace& ws);
   bool finishPending(PendingDraw& pending, size_t count) const;
@@ -242,6 +244,7 @@ class Renderer {
   std::vector<std::shared_ptr<const SetupBlock>> pendingBlocks_;  // the setups, as assembly made them (and SetupReuse keeps)
   std::vector<PendingClear> pendingClears_;
   int splitIntoBands(int minY, int maxY, int maxBands);
+  const StencilFaceState* stencilGate() const;
   RowWork rowWork_;  // the pending draws' and clears' (those counted so far), which the bands share
   std::vector<int> bandFirstRow_;    // band b: rows [bandFirstRow_[b], bandFirstRow_[b + 1])
   int deferDepth_ = 0;

@@ -3,6 +3,8 @@
 // triangle: half its box's width; a tall one: its shape, widest at its middle vertex's row) plus
 // 8, a triangle 64 more on its first row, every row 1 more — in 1/256 of a pixel; band b of n gets
 // n + 1 - b parts of n (n + 3) / 2.
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -216,4 +218,85 @@ TEST_CASE("without shapes every triangle weighs its box's width on every row", "
   CHECK(w.at(59) == (10 + 8 + 1) * 256);
   CHECK(RowWork::weighsShapes(382));
   CHECK_FALSE(RowWork::weighsShapes(27000));
+}
+
+TEST_CASE("a draw's fragment work weighs its pixels, not its rows' and triangles' fixed costs", "[raster][bands]") {
+  // The short triangle of the test above, its fragments three plain ones' (12 quarters): rows
+  // 0 … 15 cost 50 × 3 + 8 + 1 = 159 pixels each, row 0 64 more, the rows above 1.
+  RowWork work;
+  work.reset(64);
+  work.addTriangle(box(-50, -3, 180, 15), kShort, kRegion, true, 12);
+  std::vector<int64_t> w = work.rowWeights(0, 63);
+  CHECK(w.at(0) == 223 * 256);
+  CHECK(w.at(15) == 159 * 256);
+  CHECK(w.at(16) == 256);
+  // The tall triangle of "a tall triangle's rows weigh by its shape", its fragments twice plain
+  // ones' (8 quarters): its peak 2 × 12800 = 25600, rising by 2560 a row to row 9, falling by
+  // 25600 / 31 = 825 (cut to an integer) a row after it; the fixed costs as before.
+  work.reset(64);
+  work.addTriangle({0, 0, 99, 39}, shape(9, 1000), kRegion, true, 8);
+  w = work.rowWeights(0, 63);
+  CHECK(w.at(0) == 2560 + 2304 + 16384);
+  CHECK(w.at(9) == 25600 + 2304);
+  CHECK(w.at(10) == 825 * 30 + 2304);
+  CHECK(w.at(39) == 825 + 2304);
+  CHECK(w.at(40) == 256);
+}
+
+TEST_CASE("rows of costlier fragments get fewer of a band's rows", "[raster][bands]") {
+  // Two boxes weighed by their width (no shapes), rows 0 … 31 and 32 … 63, 100 pixels wide:
+  // plain rows cost 100 + 8 + 1 = 109, rows of fragments three times as costly 300 + 8 + 1 = 309,
+  // each box's first row 64 more. Two bands, the first taking 3 of 5 parts.
+  auto firstBandEnd = [](int upperWork) {
+    RowWork work;
+    work.reset(64);
+    work.addTriangle(box(0, 0, 99, 31), kShort, kRegion, false, kPlainFragmentWork);
+    work.addTriangle(box(0, 32, 99, 63), kShort, kRegion, false, upperWork);
+    std::vector<int> first;
+    REQUIRE(work.split(0, 63, 2, 4, first) == 2);
+    return first.at(1);
+  };
+  // Alike: 7104 in all, 3/5 of it 4262.4; rows 0 … 31 are 3552, row 32 173, then 109 a row:
+  // reached after row 37 (4270), so the second band starts at row 38.
+  CHECK(firstBandEnd(kPlainFragmentWork) == 38);
+  // Upper fragments three times as costly: 13504 in all, 3/5 of it 8102.4; rows 0 … 32 are
+  // 3552 + 373, then 309 a row: reached after row 46 (8251).
+  CHECK(firstBandEnd(3 * kPlainFragmentWork) == 47);
+}
+
+TEST_CASE("rows whose pixels a stencil test stops weigh down to a quarter", "[raster][bands]") {
+  // A lit pass of shadow volumes draws where the stencil equals 0. Stencil of 100 × 64: rows
+  // 0 … 15 all 0, rows 16 … 23 half 0, rows 24 … 63 all 1. One box over every row, 100 wide
+  // (109 a row, row 0 64 more). Every 8th row is sampled: rows 0 and 8 pass whole (16/16), row 16
+  // half (4 + 12 × 50/100 = 10/16), rows 24 … 56 none (4/16).
+  std::vector<uint8_t> stencil(100 * 64, 1);
+  std::fill_n(stencil.begin(), 100 * 16, uint8_t(0));
+  std::fill_n(stencil.begin() + 100 * 16, 50, uint8_t(0));
+  RowWork work;
+  work.reset(64);
+  work.addTriangle(box(0, 0, 99, 63), kShort, kRegion, false);
+  work.weighByStencil(stencil.data(), 100, 0, 63, 0xFF, 0, true);
+  std::vector<int64_t> w = work.rowWeights(0, 63);
+  CHECK(w.at(0) == 173 * 256);
+  CHECK(w.at(15) == 109 * 256);
+  CHECK(w.at(16) == 109 * 256 * 10 / 16);
+  CHECK(w.at(23) == 109 * 256 * 10 / 16);
+  CHECK(w.at(24) == 109 * 256 / 4);
+  CHECK(w.at(63) == 109 * 256 / 4);
+  // "Not equal to 0" passes where "equal" stops; a mask of 0xFE makes 1 read as 0.
+  work.weighByStencil(stencil.data(), 100, 0, 63, 0xFF, 0, false);
+  w = work.rowWeights(0, 63);
+  CHECK(w.at(15) == 109 * 256 / 4);
+  CHECK(w.at(63) == 109 * 256);
+  work.weighByStencil(stencil.data(), 100, 0, 63, 0xFE, 0, true);
+  CHECK(work.rowWeights(0, 63).at(63) == 109 * 256);
+  // Sampled from the flush's first row: rows 20 … 63 sample rows 20, 28, …, and row 20 is all 1
+  // (row 16, half 0, is not read).
+  work.weighByStencil(stencil.data(), 100, 20, 63, 0xFF, 0, true);
+  w = work.rowWeights(20, 63);
+  CHECK(w.at(0) == 109 * 256 / 4);
+  // A reset count weighs every row whole again.
+  work.reset(64);
+  work.addTriangle(box(0, 0, 99, 63), kShort, kRegion, false);
+  CHECK(work.rowWeights(0, 63).at(63) == 109 * 256);
 }
