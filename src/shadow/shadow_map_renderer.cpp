@@ -40,7 +40,8 @@ class ShadowMappedShader final : public FragmentShader {
   }
 
   int varyingCount() const override { return 6; }
-  int fragmentWork() const override {
+  int fragmentWork() const override {  // without shadows: the ambient term alone (shadeBatch)
+    if (shadows_.empty()) return kPlainFragmentWork;
     return lightingFragmentWork(terms_) + kLookupFragmentWork * int(shadows_.size());
   }
 
