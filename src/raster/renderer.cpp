@@ -732,8 +732,7 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
   }
   for (const PendingClear& c : pendingClears_) rowWork_.addClear(c.region);
   if (const StencilFaceState* gate = stencilGate()) {
-    rowWork_.weighByStencil(fb_.stencil().data(), fb_.width(), minY, maxY, gate->mask,
-                            uint8_t(std::clamp(gate->ref, 0, 255)), gate->func == CompareFunc::Equal);
+    rowWork_.weighByStencil(fb_.stencil().data(), fb_.width(), minY, maxY, *gate);
   }
   return rowWork_.split(minY, maxY, maxBands, kMinBandRows, bandFirstRow_);
 }
@@ -748,15 +747,15 @@ bool sameTest(const StencilFaceState& a, const StencilFaceState& b) {
 }
 }  // namespace
 
-// The stencil test every pending draw passes by, for both faces, when it is "equal to" or "not
-// equal to" a value and nothing in the flush writes the stencil (no draw, no clear): the buffer
-// read before the bands start is the one the draws test against. nullptr otherwise.
+// The stencil test every pending draw passes by, for both faces, when it can stop a fragment (its
+// function is not "always") and nothing in the flush writes the stencil (no draw, no clear): the
+// buffer read before the bands start is the one the draws test against. nullptr otherwise.
 const StencilFaceState* Renderer::stencilGate() const {
   if (!fb_.hasStencil() || pending_.empty()) return nullptr;
   for (const PendingClear& c : pendingClears_)
     if (c.request.stencil) return nullptr;
   const StencilFaceState& gate = pending_.front().state.stencil[FrontFacing];
-  if (gate.func != CompareFunc::Equal && gate.func != CompareFunc::NotEqual) return nullptr;
+  if (gate.func == CompareFunc::Always) return nullptr;
   for (const PendingDraw& d : pending_) {
     if (!d.state.stencilTest) return nullptr;
     for (const StencilFaceState& face : d.state.stencil)

@@ -1,5 +1,7 @@
 #include "raster/row_work.h"
 
+#include "raster/fragment_ops.h"
+
 namespace shadowref {
 
 void RowWork::addClear(const Rect& region) {
@@ -87,18 +89,27 @@ int64_t RowWork::weigh(int minY, int maxY, std::vector<int64_t>& work) const {
   return total;
 }
 
-// A sampled row's pixels that pass, counted in a loop without branches (it vectorises: 80 rows of
-// 800 bytes a flush, on the calling thread).
-void RowWork::weighByStencil(const uint8_t* stencil, int width, int minY, int maxY, uint8_t mask, uint8_t value,
-                             bool equal) {
+// A sampled row's masked values counted below, at and above the test's masked reference, in a
+// loop without branches (it vectorises: 80 rows of 800 bytes a flush, on the calling thread); the
+// test's compare function (fragment_ops.h) then says which of the three pass, asked with one value
+// of each: it reads only their order.
+void RowWork::weighByStencil(const uint8_t* stencil, int width, int minY, int maxY, const StencilFaceState& test) {
   stencilScale_.clear();
   stencilFirstRow_ = minY;
-  const uint8_t wanted = uint8_t(value & mask);
+  const uint8_t mask = test.mask;
+  const uint8_t ref = uint8_t(uint32_t(std::clamp(test.ref, 0, 255)) & mask);
+  const bool passBelow = ref > 0 && compare(test.func, ref, uint32_t(ref) - 1);
+  const bool passAt = compare(test.func, ref, ref);
+  const bool passAbove = ref < mask && compare(test.func, ref, uint32_t(ref) + 1);
   for (int y = minY; y <= maxY; y += kStencilSampleRows) {
     const uint8_t* row = stencil + size_t(y) * size_t(width);
-    int64_t same = 0;
-    for (int x = 0; x < width; ++x) same += (row[x] & mask) == wanted;
-    const int64_t passing = equal ? same : width - same;
+    int32_t below = 0, at = 0;
+    for (int x = 0; x < width; ++x) {
+      const uint8_t value = row[x] & mask;
+      below += value < ref;
+      at += value == ref;
+    }
+    const int64_t passing = (passBelow ? below : 0) + (passAt ? at : 0) + (passAbove ? width - below - at : 0);
     stencilScale_.push_back(4 + 12 * passing / std::max(width, 1));
   }
 }

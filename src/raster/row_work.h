@@ -60,12 +60,12 @@ class RowWork {
   static bool weighsShapes(size_t setups) { return setups <= 4096; }
   // A cleared rectangle: a cleared row costs about a quarter of a drawn one.
   void addClear(const Rect& region);
-  // A flush whose every draw passes only where the stored stencil equals a value (the lit passes
-  // of shadow volumes: equal to 0): each row weighs by the share of its pixels that pass, from a
+  // A flush whose every draw passes the same stencil test and writes no stencil (the lit passes of
+  // shadow volumes: "equal to 0"): each row weighs by the share of its pixels that pass, from a
   // quarter (none pass: the fragments stop at the test) to all of it. Measured on every
   // kStencilSampleRows-th row from rows [minY, maxY] of the stencil buffer (`width` bytes a row),
-  // `equal` false for a test that passes where the value differs. Until reset.
-  void weighByStencil(const uint8_t* stencil, int width, int minY, int maxY, uint8_t mask, uint8_t value, bool equal);
+  // with the test's own compare function, reference and mask. Until reset.
+  void weighByStencil(const uint8_t* stencil, int width, int minY, int maxY, const StencilFaceState& test);
   static constexpr int kStencilSampleRows = 8;
   // Another count over the same rows (only the entries it wrote: with many threads a flush adds
   // many groups' lists, each over a few of the rows).

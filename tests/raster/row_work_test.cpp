@@ -27,6 +27,14 @@ TriangleSetup shape(int peakY, int64_t pixels) {
   return t;
 }
 const TriangleSetup kShort = shape(0, 1);  // a short triangle's setup is not read
+
+StencilFaceState test(CompareFunc func, int ref, uint8_t mask) {
+  StencilFaceState s;
+  s.func = func;
+  s.ref = ref;
+  s.mask = mask;
+  return s;
+}
 }
 
 TEST_CASE("rows without triangles are cut into shrinking shares of equal rows", "[raster][bands]") {
@@ -275,7 +283,7 @@ TEST_CASE("rows whose pixels a stencil test stops weigh down to a quarter", "[ra
   RowWork work;
   work.reset(64);
   work.addTriangle(box(0, 0, 99, 63), kShort, kRegion, false);
-  work.weighByStencil(stencil.data(), 100, 0, 63, 0xFF, 0, true);
+  work.weighByStencil(stencil.data(), 100, 0, 63, test(CompareFunc::Equal, 0, 0xFF));
   std::vector<int64_t> w = work.rowWeights(0, 63);
   CHECK(w.at(0) == 173 * 256);
   CHECK(w.at(15) == 109 * 256);
@@ -284,19 +292,52 @@ TEST_CASE("rows whose pixels a stencil test stops weigh down to a quarter", "[ra
   CHECK(w.at(24) == 109 * 256 / 4);
   CHECK(w.at(63) == 109 * 256 / 4);
   // "Not equal to 0" passes where "equal" stops; a mask of 0xFE makes 1 read as 0.
-  work.weighByStencil(stencil.data(), 100, 0, 63, 0xFF, 0, false);
+  work.weighByStencil(stencil.data(), 100, 0, 63, test(CompareFunc::NotEqual, 0, 0xFF));
   w = work.rowWeights(0, 63);
   CHECK(w.at(15) == 109 * 256 / 4);
   CHECK(w.at(63) == 109 * 256);
-  work.weighByStencil(stencil.data(), 100, 0, 63, 0xFE, 0, true);
+  work.weighByStencil(stencil.data(), 100, 0, 63, test(CompareFunc::Equal, 0, 0xFE));
   CHECK(work.rowWeights(0, 63).at(63) == 109 * 256);
   // Sampled from the flush's first row: rows 20 … 63 sample rows 20, 28, …, and row 20 is all 1
   // (row 16, half 0, is not read).
-  work.weighByStencil(stencil.data(), 100, 20, 63, 0xFF, 0, true);
+  work.weighByStencil(stencil.data(), 100, 20, 63, test(CompareFunc::Equal, 0, 0xFF));
   w = work.rowWeights(20, 63);
   CHECK(w.at(0) == 109 * 256 / 4);
   // A reset count weighs every row whole again.
   work.reset(64);
   work.addTriangle(box(0, 0, 99, 63), kShort, kRegion, false);
   CHECK(work.rowWeights(0, 63).at(63) == 109 * 256);
+}
+
+TEST_CASE("rows weigh by the pixels that pass any stencil compare function, with its reference and mask",
+          "[raster][bands]") {
+  // Stencil of 100 × 8, one sampled row (row 0): values 0 … 99, one a pixel. A box over the rows
+  // weighs 109 a row whole (row 0 64 more: 173); a row weighs (4 + 12 × passing / 100) / 16 of it.
+  std::vector<uint8_t> stencil(100 * 8);
+  for (size_t i = 0; i < stencil.size(); ++i) stencil[i] = uint8_t(i % 100);
+  auto firstRow = [&](const StencilFaceState& s) {
+    RowWork work;
+    work.reset(8);
+    work.addTriangle(box(0, 0, 99, 7), kShort, kRegion, false);
+    work.weighByStencil(stencil.data(), 100, 0, 7, s);
+    return work.rowWeights(0, 7).at(0);
+  };
+  auto weighs = [](int64_t passing) { return 173 * 256 * (4 + 12 * passing / 100) / 16; };
+  // "ref op stored": less than 40 passes where the value is over 40 (59 of them), greater where
+  // it is under (40), less-or-equal 60, greater-or-equal 41, equal 1, never none.
+  CHECK(firstRow(test(CompareFunc::Less, 40, 0xFF)) == weighs(59));
+  CHECK(firstRow(test(CompareFunc::Greater, 40, 0xFF)) == weighs(40));
+  CHECK(firstRow(test(CompareFunc::LEqual, 40, 0xFF)) == weighs(60));
+  CHECK(firstRow(test(CompareFunc::GEqual, 40, 0xFF)) == weighs(41));
+  CHECK(firstRow(test(CompareFunc::Equal, 40, 0xFF)) == weighs(1));
+  CHECK(firstRow(test(CompareFunc::Never, 40, 0xFF)) == weighs(0));
+  // Mask 0x0F: each value is its low four bits, the reference 40 reads 8. Among 0 … 99 the low
+  // bits are under 8 in 52 values (0 … 7 of each sixteen: 6 × 8 + 96 … 99), 8 in 6 (8, 24, …, 88).
+  CHECK(firstRow(test(CompareFunc::Greater, 40, 0x0F)) == weighs(52));
+  CHECK(firstRow(test(CompareFunc::Equal, 40, 0x0F)) == weighs(6));
+  CHECK(firstRow(test(CompareFunc::Less, 40, 0x0F)) == weighs(100 - 52 - 6));
+  // A reference beyond 255 is clamped to 255, as GL does: "equal" passes nowhere, "greater"
+  // everywhere (every value is below it).
+  CHECK(firstRow(test(CompareFunc::Equal, 300, 0xFF)) == weighs(0));
+  CHECK(firstRow(test(CompareFunc::Greater, 300, 0xFF)) == weighs(100));
 }
