@@ -35,9 +35,11 @@ inline bool compare(CompareFunc func, uint32_t incoming, uint32_t stored) {
   return false;
 }
 
+// The reference as the stencil test compares it: clamped to [0, 255], as GL does, then masked.
+inline uint32_t maskedStencilReference(const StencilFaceState& s) { return uint32_t(std::clamp(s.ref, 0, 255)) & s.mask; }
+
 inline bool stencilTest(const StencilFaceState& s, uint8_t stored) {
-  const uint32_t ref = uint32_t(std::clamp(s.ref, 0, 255));
-  return compare(s.func, ref & s.mask, uint32_t(stored) & s.mask);
+  return compare(s.func, maskedStencilReference(s), uint32_t(stored) & s.mask);
 }
 
 inline uint8_t applyStencilOp(StencilOp op, uint8_t stored, int ref) {

@@ -889,7 +889,7 @@ int FragmentProcessor::filterChunk(const StencilFaceState& sface, size_t at, int
     return -1;
   const uint8_t* stencil = usesStencil_ ? fb_.stencil().data() + at : nullptr;
   uint32_t* depth = usesDepth_ ? fb_.depthCodes().data() + at : nullptr;
-  const uint32_t ref = uint32_t(std::clamp(sface.ref, 0, 255)) & sface.mask, mask = sface.mask;
+  const uint32_t ref = maskedStencilReference(sface), mask = sface.mask;
   int survived = 0;
   uint64_t stencilFailed = 0, depthFailed = 0;
   auto run = [&](auto sf, auto df) {

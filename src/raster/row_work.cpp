@@ -97,7 +97,7 @@ void RowWork::weighByStencil(const uint8_t* stencil, int width, int minY, int ma
   stencilScale_.clear();
   stencilFirstRow_ = minY;
   const uint8_t mask = test.mask;
-  const uint8_t ref = uint8_t(uint32_t(std::clamp(test.ref, 0, 255)) & mask);
+  const uint8_t ref = uint8_t(maskedStencilReference(test));
   const bool passBelow = ref > 0 && compare(test.func, ref, uint32_t(ref) - 1);
   const bool passAt = compare(test.func, ref, ref);
   const bool passAbove = ref < mask && compare(test.func, ref, uint32_t(ref) + 1);
