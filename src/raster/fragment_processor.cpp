@@ -55,6 +55,11 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
   if (writesColor_) constantColor_ = shader->constantColor();
   spanLoop_ = chooseSpanLoop();
+  for (const Facing f : {FrontFacing, BackFacing}) {
+    const StencilFaceState& face = state.stencil[f];
+    discardsUnchanged_[f] = usesStencil_ && face.func != CompareFunc::Always &&
+                            (face.sfail == StencilOp::Keep || face.writeMask == 0);
+  }
 }
 
 double FragmentProcessor::fragmentDepth(const TriangleSetup& t, int x, int y) const {
@@ -221,11 +226,34 @@ void FragmentProcessor::queueSpan(const TriangleSetup& t, int y, int xl, int xr,
   runSpan(t, y, xl, xr, e);
 }
 
+namespace {
+
+// Whether none of n fragments over these stencil values passes the face's stencil test (the
+// comparison of stencilTest, fixed at compile time, on bytes).
+bool noneLetThrough(const StencilFaceState& face, const uint8_t* stencil, int n) {
+  const uint8_t ref = uint8_t(maskedStencilReference(face)), mask = uint8_t(face.mask);
+  bool none = true;
+  withCompare(face.func, [&](auto f) {
+    uint8_t passed = 0;
+    for (int i = 0; i < n; ++i) passed |= uint8_t(passes<decltype(f)::value>(ref, uint8_t(stencil[i] & mask)));
+    none = passed == 0;
+  });
+  return none;
+}
+
+}  // namespace
+
 void FragmentProcessor::runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]) {
   stats_.fragments += uint64_t(xr - xl + 1);
+  const StencilFaceState& face = state_.stencil[t.facing];
+  const uint8_t* const stencil = discardsUnchanged_[t.facing] ? fb_.stencil().data() + fb_.index(0, y) : nullptr;
   uint32_t codes[kChunk];
   for (int x = xl; x <= xr; x += kChunk) {
     const int n = std::min(kChunk, xr - x + 1);
+    if (stencil && noneLetThrough(face, stencil + x, n)) {
+      stats_.stencilFailed += uint64_t(n);
+      continue;
+    }
     depthCodes(t, y, x, n, codes);
     generalChunk(t, y, x, n, codes, xl, e);
   }

@@ -8,7 +8,8 @@
 // DECR_WRAP), depth only (shadow maps) and one constant colour (the ambient pass) walk each
 // triangle's rows straight to the buffers, eight pixels per step; a row's last pixels are one more
 // step of eight whose lanes outside the span store back what they read. Everything else goes row
-// span by row span in chunks: the depth codes of the chunk first, then the tests; the surviving
+// span by row span in chunks: the depth codes of the chunk first, then the tests (a chunk the
+// stencil test discards whole, where failing writes nothing, is only counted); the surviving
 // fragments wait, row after row, until a batch of them is full or the triangle ends, and are
 // shaded and written together. Each pixel is changed at most once per triangle, so the order of
 // a triangle's writes changes no byte. The watched pixel (pixel history)
@@ -105,6 +106,12 @@ class FragmentProcessor {
   SpanLoop spanLoop_;
   const glm::dvec4* constantColor_ = nullptr;  // the shader's colour when it has only one
   uint8_t* countTarget_ = nullptr;  // countInto's buffer; nullptr: the framebuffer's stencil
+  // Per facing: whether a fragment that fails the stencil test changes nothing (the test can fail
+  // and its fail op writes nothing). A chunk of such fragments that all fail — a lit pass's "equal
+  // to 0" over a shadowed stretch — is counted and skipped before its depths are made: GL discards
+  // a fragment that fails the stencil test before the depth test (GL 2.1 §4.1.5), so its depth
+  // code, depth test and shading would be thrown away.
+  bool discardsUnchanged_[2] = {false, false};
 
   // The surviving fragments of the current triangle's chunks that wait to be shaded: a chunk of a
   // row span holds about 15 of them on average in a frame of small triangles (the outdoor scene's

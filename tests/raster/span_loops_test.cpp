@@ -1,6 +1,7 @@
 // The span loops (stencil counting, depth only, general) against the reference path, which sends
 // every fragment through the one-fragment function of the pixel history: the same triangles in
 // random render states must leave the same bytes in every buffer and the same counters.
+#include <algorithm>
 #include <cstring>
 
 #include <catch2/catch.hpp>
@@ -164,5 +165,88 @@ TEST_CASE("span loops leave the same bytes as the one-fragment path, in random s
     CHECK(reference.stats.depthFailed == spans.stats.depthFailed);
     CHECK(reference.stats.stencilWrites == spans.stats.stencilWrites);
     CHECK(reference.stats.colorWrites == spans.stats.colorWrites);
+  }
+}
+
+namespace {
+
+// A 256x64 screen-filling rectangle drawn over a stencil holding `shadow` in columns [40, 180) of
+// rows [10, 50) and `lit` everywhere else: its rows are four chunks of 64, the first and third
+// cut by the shadow's edges, the second all in it. Back-facing when `back` (the corners in the
+// other order).
+Drawn drawOverShadow(bool reference, const StencilFaceState& face, bool back, uint8_t lit, uint8_t shadow) {
+  Renderer::useReferencePath(reference);
+  Drawn d{Framebuffer(256, 64), {}};
+  Renderer renderer(d.fb, 1);
+  Renderer::useReferencePath(false);
+  d.fb.ensureStencil();
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 256; ++x) d.fb.stencil()[d.fb.index(x, y)] = x >= 40 && x < 180 && y >= 10 && y < 50 ? shadow : lit;
+  RenderState s = fullViewportState(d.fb);
+  s.stencilTest = true;
+  s.stencil = {face, face};
+  s.depthTest = true;
+  s.depthFunc = CompareFunc::Less;
+  std::vector<ClipVertex> rect = windowRect(s.viewport, 0.0, 0.0, 256.0, 64.0, 0.5);
+  if (back)
+    for (size_t i = 0; i < rect.size(); i += 3) std::swap(rect[i + 1], rect[i + 2]);
+  const ConstantColorShader white({1.0, 1.0, 1.0, 1.0});
+  draw(renderer, s, rect, &white);
+  d.stats = renderer.stats();
+  return d;
+}
+
+}  // namespace
+
+// A lit pass's chunks whose every fragment fails a stencil test that writes nothing are counted
+// and skipped before their depths are made (FragmentProcessor::runSpan); one whose fail op writes
+// is not. Checked by hand (the shadow is 140 x 40 = 5600 pixels of 16384) and against the
+// one-fragment path.
+TEST_CASE("chunks the stencil test discards whole are counted, not tested further", "[raster][spans]") {
+  constexpr uint64_t kPixels = 256 * 64, kShadow = 140 * 40;
+  auto same = [](const Drawn& a, const Drawn& b) {
+    CHECK(a.fb.stencil() == b.fb.stencil());
+    CHECK(a.fb.depthCodes() == b.fb.depthCodes());
+    CHECK(sameColor(a.fb, b.fb));
+    CHECK(a.stats.fragments == b.stats.fragments);
+    CHECK(a.stats.stencilFailed == b.stats.stencilFailed);
+    CHECK(a.stats.depthFailed == b.stats.depthFailed);
+    CHECK(a.stats.colorWrites == b.stats.colorWrites);
+  };
+  SECTION("equal to 0, keep: the shadow is not lit, its depth not written") {
+    StencilFaceState face;
+    face.func = CompareFunc::Equal;
+    face.ref = 0;
+    const Drawn spans = drawOverShadow(false, face, false, 0, 1);
+    CHECK(spans.stats.fragments == kPixels);
+    CHECK(spans.stats.stencilFailed == kShadow);
+    CHECK(spans.stats.colorWrites == kPixels - kShadow);
+    const Framebuffer& fb = spans.fb;
+    CHECK(fb.color()[fb.index(100, 30)] == glm::vec4(0.0f));  // in the shadow
+    CHECK(fb.color()[fb.index(39, 30)] == glm::vec4(1.0f));   // just left of it
+    CHECK(fb.color()[fb.index(180, 30)] == glm::vec4(1.0f));  // just right of it
+    CHECK(fb.depthCodes()[fb.index(100, 30)] == fb.depthCodec().encode(1.0));
+    CHECK(fb.depthCodes()[fb.index(10, 30)] == fb.depthCodec().encode(0.5));
+    same(drawOverShadow(true, face, false, 0, 1), spans);
+  }
+  SECTION("greater through a mask, on back faces: 2 > (0x13 & 0x0F) fails, 2 > (0x01 & 0x0F) passes") {
+    StencilFaceState face;
+    face.func = CompareFunc::Greater;
+    face.ref = 2;
+    face.mask = 0x0F;
+    const Drawn spans = drawOverShadow(false, face, true, 0x01, 0x13);
+    CHECK(spans.stats.stencilFailed == kShadow);
+    CHECK(spans.stats.colorWrites == kPixels - kShadow);
+    same(drawOverShadow(true, face, true, 0x01, 0x13), spans);
+  }
+  SECTION("a fail op that writes: every failing fragment still replaces its stencil") {
+    StencilFaceState face;
+    face.func = CompareFunc::Equal;
+    face.ref = 0;
+    face.sfail = StencilOp::Replace;
+    const Drawn spans = drawOverShadow(false, face, false, 0, 1);
+    CHECK(spans.stats.stencilFailed == kShadow);
+    CHECK(std::all_of(spans.fb.stencil().begin(), spans.fb.stencil().end(), [](uint8_t v) { return v == 0; }));
+    same(drawOverShadow(true, face, false, 0, 1), spans);
   }
 }
