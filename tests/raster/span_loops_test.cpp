@@ -136,6 +136,18 @@ bool sameColor(const Framebuffer& a, const Framebuffer& b) {
          (a.color().empty() || std::memcmp(a.color().data(), b.color().data(), a.color().size() * sizeof(glm::vec4)) == 0);
 }
 
+// Every buffer's bytes and every counter the same.
+void checkSame(const Drawn& reference, const Drawn& spans) {
+  CHECK(reference.fb.stencil() == spans.fb.stencil());
+  CHECK(reference.fb.depthCodes() == spans.fb.depthCodes());
+  CHECK(sameColor(reference.fb, spans.fb));
+  CHECK(reference.stats.fragments == spans.stats.fragments);
+  CHECK(reference.stats.stencilFailed == spans.stats.stencilFailed);
+  CHECK(reference.stats.depthFailed == spans.stats.depthFailed);
+  CHECK(reference.stats.stencilWrites == spans.stats.stencilWrites);
+  CHECK(reference.stats.colorWrites == spans.stats.colorWrites);
+}
+
 }  // namespace
 
 TEST_CASE("span loops leave the same bytes as the one-fragment path, in random states", "[raster][spans]") {
@@ -157,14 +169,7 @@ TEST_CASE("span loops leave the same bytes as the one-fragment path, in random s
     const Drawn reference = drawWith(true, width, height, format, states, batches, 1);
     const Drawn spans = drawWith(false, width, height, format, states, batches, 1);
     REQUIRE(reference.stats.fragments > 0);
-    CHECK(reference.fb.stencil() == spans.fb.stencil());
-    CHECK(reference.fb.depthCodes() == spans.fb.depthCodes());
-    CHECK(sameColor(reference.fb, spans.fb));
-    CHECK(reference.stats.fragments == spans.stats.fragments);
-    CHECK(reference.stats.stencilFailed == spans.stats.stencilFailed);
-    CHECK(reference.stats.depthFailed == spans.stats.depthFailed);
-    CHECK(reference.stats.stencilWrites == spans.stats.stencilWrites);
-    CHECK(reference.stats.colorWrites == spans.stats.colorWrites);
+    checkSame(reference, spans);
   }
 }
 
@@ -204,15 +209,6 @@ Drawn drawOverShadow(bool reference, const StencilFaceState& face, bool back, ui
 // one-fragment path.
 TEST_CASE("chunks the stencil test discards whole are counted, not tested further", "[raster][spans]") {
   constexpr uint64_t kPixels = 256 * 64, kShadow = 140 * 40;
-  auto same = [](const Drawn& a, const Drawn& b) {
-    CHECK(a.fb.stencil() == b.fb.stencil());
-    CHECK(a.fb.depthCodes() == b.fb.depthCodes());
-    CHECK(sameColor(a.fb, b.fb));
-    CHECK(a.stats.fragments == b.stats.fragments);
-    CHECK(a.stats.stencilFailed == b.stats.stencilFailed);
-    CHECK(a.stats.depthFailed == b.stats.depthFailed);
-    CHECK(a.stats.colorWrites == b.stats.colorWrites);
-  };
   SECTION("equal to 0, keep: the shadow is not lit, its depth not written") {
     StencilFaceState face;
     face.func = CompareFunc::Equal;
@@ -227,7 +223,7 @@ TEST_CASE("chunks the stencil test discards whole are counted, not tested furthe
     CHECK(fb.color()[fb.index(180, 30)] == glm::vec4(1.0f));  // just right of it
     CHECK(fb.depthCodes()[fb.index(100, 30)] == fb.depthCodec().encode(1.0));
     CHECK(fb.depthCodes()[fb.index(10, 30)] == fb.depthCodec().encode(0.5));
-    same(drawOverShadow(true, face, false, 0, 1), spans);
+    checkSame(drawOverShadow(true, face, false, 0, 1), spans);
   }
   SECTION("greater through a mask, on back faces: 2 > (0x13 & 0x0F) fails, 2 > (0x01 & 0x0F) passes") {
     StencilFaceState face;
@@ -237,7 +233,7 @@ TEST_CASE("chunks the stencil test discards whole are counted, not tested furthe
     const Drawn spans = drawOverShadow(false, face, true, 0x01, 0x13);
     CHECK(spans.stats.stencilFailed == kShadow);
     CHECK(spans.stats.colorWrites == kPixels - kShadow);
-    same(drawOverShadow(true, face, true, 0x01, 0x13), spans);
+    checkSame(drawOverShadow(true, face, true, 0x01, 0x13), spans);
   }
   SECTION("a fail op that writes: every failing fragment still replaces its stencil") {
     StencilFaceState face;
@@ -247,6 +243,6 @@ TEST_CASE("chunks the stencil test discards whole are counted, not tested furthe
     const Drawn spans = drawOverShadow(false, face, false, 0, 1);
     CHECK(spans.stats.stencilFailed == kShadow);
     CHECK(std::all_of(spans.fb.stencil().begin(), spans.fb.stencil().end(), [](uint8_t v) { return v == 0; }));
-    same(drawOverShadow(true, face, false, 0, 1), spans);
+    checkSame(drawOverShadow(true, face, false, 0, 1), spans);
   }
 }
