@@ -60,6 +60,17 @@ inline uint8_t writeStencil(uint8_t stored, uint8_t computed, uint8_t writeMask)
   return uint8_t((stored & ~writeMask) | (computed & writeMask));
 }
 
+// Whether an op, through this write mask, can change some stored stencil byte: KEEP never does, a
+// zero mask keeps every bit, and every other op changes some byte through any other mask. The
+// fast paths ask this to know where the stencil buffer is only read.
+inline bool stencilOpMayWrite(StencilOp op, uint8_t writeMask) { return writeMask != 0 && op != StencilOp::Keep; }
+
+// The same for any of a face's three ops: whether drawing with it can change the stencil buffer.
+inline bool stencilFaceMayWrite(const StencilFaceState& s) {
+  return stencilOpMayWrite(s.sfail, s.writeMask) || stencilOpMayWrite(s.dpfail, s.writeMask) ||
+         stencilOpMayWrite(s.dppass, s.writeMask);
+}
+
 inline bool depthTest(CompareFunc func, uint32_t fragmentCode, uint32_t storedCode) {
   return compare(func, fragmentCode, storedCode);
 }

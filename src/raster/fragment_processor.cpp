@@ -58,7 +58,7 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   for (const Facing f : {FrontFacing, BackFacing}) {
     const StencilFaceState& face = state.stencil[f];
     discardsUnchanged_[f] = usesStencil_ && face.func != CompareFunc::Always &&
-                            (face.sfail == StencilOp::Keep || face.writeMask == 0);
+                            !stencilOpMayWrite(face.sfail, face.writeMask);
   }
 }
 
@@ -906,9 +906,7 @@ inline int appendLanes(v4u mask, int first, int* survivors, int count) {
 // as lane masks, four pixels per step. Returns -1 for any other state.
 int FragmentProcessor::filterChunk(const StencilFaceState& sface, size_t at, int n, const uint32_t* codes,
                                    int* survivors) {
-  const bool stencilWrites = usesStencil_ && sface.writeMask != 0 &&
-                             (sface.sfail != StencilOp::Keep || sface.dpfail != StencilOp::Keep ||
-                              sface.dppass != StencilOp::Keep);
+  const bool stencilWrites = usesStencil_ && stencilFaceMayWrite(sface);
   const CompareFunc stencilFunc = usesStencil_ ? sface.func : CompareFunc::Always;
   const CompareFunc depthFunc = usesDepth_ ? state_.depthFunc : CompareFunc::Always;
   auto usual = [](CompareFunc f, CompareFunc a, CompareFunc b) { return f == CompareFunc::Always || f == a || f == b; };

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "raster/fragment_ops.h"
 #include "raster/rasterizer.h"
 
 namespace shadowref {
@@ -738,10 +739,6 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
 }
 
 namespace {
-bool writesStencil(const StencilFaceState& s) {
-  return s.writeMask != 0 &&
-         (s.sfail != StencilOp::Keep || s.dpfail != StencilOp::Keep || s.dppass != StencilOp::Keep);
-}
 bool sameTest(const StencilFaceState& a, const StencilFaceState& b) {
   return a.func == b.func && std::clamp(a.ref, 0, 255) == std::clamp(b.ref, 0, 255) && a.mask == b.mask;
 }
@@ -759,7 +756,7 @@ const StencilFaceState* Renderer::stencilGate() const {
   for (const PendingDraw& d : pending_) {
     if (!d.state.stencilTest) return nullptr;
     for (const StencilFaceState& face : d.state.stencil)
-      if (!sameTest(face, gate) || writesStencil(face)) return nullptr;
+      if (!sameTest(face, gate) || stencilFaceMayWrite(face)) return nullptr;
   }
   return &gate;
 }

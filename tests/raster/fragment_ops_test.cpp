@@ -234,6 +234,44 @@ TEST_CASE("stencil write mask lets only its bits change, on every path", "[raste
   CHECK(stencilAfterDraw({0xAB, 0x0C}, s) == std::vector<uint8_t>{0xAB, 0x0C});
 }
 
+TEST_CASE("stencilOpMayWrite is true exactly for the op and mask that change some stored byte",
+          "[raster][stencil]") {
+  // Against the definition, over every stored byte and write mask and references inside and outside
+  // [0, 255]: an op "may write" when some stored value comes out of the op and the mask changed.
+  const StencilOp ops[] = {StencilOp::Keep, StencilOp::Zero,     StencilOp::Replace,  StencilOp::Incr,
+                           StencilOp::Decr, StencilOp::Invert, StencilOp::IncrWrap, StencilOp::DecrWrap};
+  const int refs[] = {-5, 0, 1, 128, 255, 300};
+  int mayWrite = 0;
+  for (const StencilOp op : ops) {
+    for (int mask = 0; mask < 256; ++mask) {
+      bool changes = false;
+      for (const int ref : refs)
+        for (int stored = 0; stored < 256 && !changes; ++stored)
+          changes = writeStencil(uint8_t(stored), applyStencilOp(op, uint8_t(stored), ref), uint8_t(mask)) != stored;
+      INFO("op " << name(op) << ", write mask " << mask);
+      CHECK(stencilOpMayWrite(op, uint8_t(mask)) == changes);
+      mayWrite += changes;
+    }
+  }
+  CHECK(mayWrite == 7 * 255);  // every op but KEEP, through every mask but 0
+}
+
+TEST_CASE("stencilFaceMayWrite asks all three ops through the face's write mask", "[raster][stencil]") {
+  StencilFaceState f;  // KEEP, KEEP, KEEP
+  CHECK_FALSE(stencilFaceMayWrite(f));
+  f.dpfail = StencilOp::IncrWrap;  // z-fail's back faces
+  CHECK(stencilFaceMayWrite(f));
+  f.writeMask = 0;
+  CHECK_FALSE(stencilFaceMayWrite(f));
+  f = StencilFaceState{};
+  f.sfail = StencilOp::Zero;
+  CHECK(stencilFaceMayWrite(f));
+  f = StencilFaceState{};
+  f.dppass = StencilOp::Replace;
+  f.writeMask = 0x80;
+  CHECK(stencilFaceMayWrite(f));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Depth test (GL 2.1 §4.1.6): the fragment's code FUNC the stored code.
 
