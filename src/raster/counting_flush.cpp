@@ -60,7 +60,8 @@ bool Renderer::countsInAnyOrder() const {
   // across: 1.4 % slower) nor the room's (382 large ones, 134 across: its volume pass 30 % slower).
   // Since the sum goes 32 bytes a step (round 31) the pumpkins by triangles take 2.5 % fewer
   // instructions a frame at two threads, but their volume pass was no quicker in 24 alternating
-  // rounds (its rows leave the threads' caches), so the line stays.
+  // rounds (by triangles each thread reads the whole screen's depth, not its band's), so the line
+  // stays.
   // Every few setups, for a sample of about kSampledSetups: the rows each covers in its region.
   size_t setups = 0;
   for (const PendingDraw& d : pending_) setups += d.count;
