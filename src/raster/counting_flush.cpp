@@ -59,7 +59,7 @@ bool Renderer::countsInAnyOrder() const {
   // threads, 5 % of the frame's instructions fewer) — not the pumpkins' (11700 small ones, 600
   // across: 1.4 % slower) nor the room's (382 large ones, 134 across: its volume pass 30 % slower).
   // Since the sum goes 32 bytes a step (round 31) the pumpkins by triangles take 2.5 % fewer
-  // instructions a frame at two threads, but their volume pass was no quicker in 24 alternating
+  // instructions a frame at two threads, but their volume pass was slower in 21 of 30 alternating
   // rounds (by triangles each thread reads the whole screen's depth, not its band's), so the line
   // stays.
   // Every few setups, for a sample of about kSampledSetups: the rows each covers in its region.
