@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "raster/band_setups.h"
 #include "raster/fragment_ops.h"
 #include "raster/rasterizer.h"
 
@@ -659,7 +660,8 @@ void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, Fragment
 // The setups of the pending draws whose rows (inside their draw's region) meet rows [y0, y1],
 // in submission order, each rasterized inside those rows with its own draw's state. The band
 // picks its setups out of the compact bounds list itself — 16 bytes a setup read on the band's
-// thread — rather than every setup being binned on one thread before the bands start.
+// thread — rather than every setup being binned on one thread before the bands start, and asks
+// for each setup's bytes a few setups before it rasterizes it (BandSetups).
 void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats) const {
   std::optional<FragmentProcessor> fragments;
   size_t nextClear = 0;
@@ -672,16 +674,17 @@ void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats) const {
     band.y = std::max(y0, draw.region.y);
     band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
     bool started = false;
-    for (size_t i = draw.first; i < draw.first + draw.count; ++i) {
-      const SetupBounds& b = pendingBounds_[i];
-      if (b.maxY < first || b.minY > last) continue;
+    BandSetups setups{std::span(pendingBounds_).subspan(draw.first, draw.count),
+                      std::span<const TriangleSetup* const>(pendingSetups_.data() + draw.first, draw.count), first, last,
+                      draw.minY < first || draw.maxY > last};
+    for (size_t i; setups.next(i);) {
       if (!started) {
         // The processor writes to fb_ through its own reference: rasterizing changes the
         // framebuffer, not the renderer.
         fragments.emplace(fb_, draw.state, draw.shader, stats, &draw.watch);
         started = true;
       }
-      rasterizeOne(*pendingSetups_[i], band, *fragments);
+      rasterizeOne(*pendingSetups_[draw.first + i], band, *fragments);
     }
   }
   clearRowsBefore(pending_.size(), nextClear, y0, y1);
