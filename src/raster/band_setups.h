@@ -23,6 +23,17 @@
 
 namespace shadowref {
 
+// Asks for every cache line of a setup: one every 64 bytes from its first byte, and its last
+// byte's (a setup need not start a line), unrolled (the count is a constant).
+inline void fetchSetup(const TriangleSetup* t) {
+  const char* const setup = reinterpret_cast<const char*>(t);
+  constexpr size_t kLine = 64;
+  [&]<size_t... k>(std::index_sequence<k...>) {
+    (__builtin_prefetch(setup + k * kLine), ...);
+  }(std::make_index_sequence<(sizeof(TriangleSetup) + kLine - 1) / kLine>());
+  __builtin_prefetch(setup + sizeof(TriangleSetup) - 1);
+}
+
 class BandSetups {
  public:
   // `bounds` and `setups` are the draw's, one entry a setup; the band's rows are [first, last].
@@ -79,17 +90,10 @@ class BandSetups {
     return i;
   }
 
-  // Asks for every cache line of setup i (which meets the rows): one every 64 bytes from its
-  // first byte, and its last byte's (a setup need not start a line), unrolled (the count is a
-  // constant). The scan goes on after it.
+  // Asks for setup i (which meets the rows); the scan goes on after it.
   void fetch(size_t i) {
     scanned_ = i + 1;
-    const char* const setup = reinterpret_cast<const char*>(setups_[i]);
-    constexpr size_t kLine = 64;
-    [&]<size_t... k>(std::index_sequence<k...>) {
-      (__builtin_prefetch(setup + k * kLine), ...);
-    }(std::make_index_sequence<(sizeof(TriangleSetup) + kLine - 1) / kLine>());
-    __builtin_prefetch(setup + sizeof(TriangleSetup) - 1);
+    fetchSetup(setups_[i]);
   }
 
   std::span<const SetupBounds> bounds_;

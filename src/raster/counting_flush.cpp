@@ -10,8 +10,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <vector>
 
+#include "raster/band_setups.h"
 #include "raster/renderer.h"
 #include "raster/stencil_sum.h"
 
@@ -29,6 +32,8 @@ constexpr size_t kMaxExtraStencilBytes = size_t(64) << 20;
 constexpr size_t kSampledSetups = 1024;
 // Rows of the final sum a task adds at least.
 constexpr int64_t kPixelsPerSumPart = 1 << 15;
+// countByBands: a claim takes a kClaimShare-th of a band's share of the setups left.
+constexpr int kClaimShare = 8;
 
 // The stencils of the threads but the first, kept zero between flushes (the sum zeroes what it
 // read), and kept from flush to flush and frame to frame on the calling thread: new ones would be
@@ -51,7 +56,10 @@ bool Renderer::countsInAnyOrder() const {
     if (d.count > 0 && !FragmentProcessor::onlyAddsToStencil(fb_, d.state, d.shader)) return false;
     if (d.watch.observer) return false;  // drawn while the pixel history watched: it sees fragments in order
   }
-  if (size_t(threads() - 1) * fb_.pixelCount() > kMaxExtraStencilBytes) return false;
+  return size_t(threads()) * fb_.pixelCount() <= kMaxExtraStencilBytes;
+}
+
+bool Renderer::countsByTriangles() const {
   // Cut into bands, each setup that crosses a band's edge is started again there (about 1200
   // instructions); counted by triangles, a thread's rows are no longer in its cache. Runs of
   // triangles pay where more setups cross an average row than it has pixels: the city's volume
@@ -111,9 +119,9 @@ int Renderer::cutIntoRuns(size_t runs) {
 
 // The extra stencils' rows that were counted into (task k's in extra[k - 1]), added to the
 // framebuffer's and zeroed, in parts of rows on the threads.
-void Renderer::addExtraStencils(std::vector<std::vector<uint8_t>>& extra) {
+void Renderer::addExtraStencils(std::vector<std::vector<uint8_t>>& extra, size_t firstTask) {
   int lo = fb_.height(), hi = -1;
-  for (size_t k = 1; k < countTasks_.size(); ++k) {
+  for (size_t k = firstTask; k < countTasks_.size(); ++k) {
     CountTask& t = countTasks_[k];
     t.minY = std::max(t.minY, 0);
     t.maxY = std::min(t.maxY, fb_.height() - 1);
@@ -128,12 +136,12 @@ void Renderer::addExtraStencils(std::vector<std::vector<uint8_t>>& extra) {
   uint8_t* const stencil = fb_.stencil().data();
   pool_->run(parts, [&](int part) {
     const int y0 = lo + int(int64_t(rows) * part / parts), y1 = lo + int(int64_t(rows) * (part + 1) / parts);
-    for (size_t k = 1; k < countTasks_.size(); ++k) {
+    for (size_t k = firstTask; k < countTasks_.size(); ++k) {
       const CountTask& t = countTasks_[k];
       const int from = std::max(y0, t.minY), to = std::min(y1, t.maxY + 1);
       if (from >= to) continue;
       const size_t first = size_t(from) * size_t(width), last = size_t(to) * size_t(width);
-      addAndZeroCounts(stencil + first, extra[k - 1].data() + first, last - first);
+      addAndZeroCounts(stencil + first, extra[k - firstTask].data() + first, last - first);
     }
   });
 }
@@ -171,9 +179,104 @@ void Renderer::countByTriangles() {
     for (size_t k = 0; k + 1 < size_t(tasks); ++k) std::fill(extra[k].begin(), extra[k].end(), uint8_t(0));
     throw;
   }
-  addExtraStencils(extra);
+  addExtraStencils(extra, 1);
   for (const CountTask& t : countTasks_) stats_ += t.stats;
   ++trianglesCountedFlushes_;
+}
+
+// The setups of every pending draw that meet rows [y0, y1], in submission order.
+void Renderer::collectBandEntries(int y0, int y1, std::vector<CountEntry>& entries) const {
+  entries.clear();
+  for (size_t d = 0; d < pending_.size(); ++d) {
+    const PendingDraw& draw = pending_[d];
+    const int first = std::max(y0, draw.minY), last = std::min(y1, draw.maxY);
+    if (first > last) continue;  // also a draw with nothing to rasterize (minY > maxY)
+    const SetupBounds* const bounds = pendingBounds_.data();
+    for (size_t i = draw.first; i < draw.first + draw.count; ++i)
+      if (bounds[i].maxY >= first && bounds[i].minY <= last) entries.push_back({uint32_t(d), uint32_t(i)});
+  }
+}
+
+// Entries [first, last) of a band of rows [y0, y1], each rasterized inside those rows with its
+// own draw's state, counted into `target`: the band's own setups, or some its task left to others.
+void Renderer::countEntries(const std::vector<CountEntry>& entries, uint32_t first, uint32_t last, int y0, int y1,
+                            uint8_t* target, RasterStats& stats) const {
+  std::optional<FragmentProcessor> fragments;
+  uint32_t current = std::numeric_limits<uint32_t>::max();
+  Rect band;
+  for (uint32_t k = first; k < last; ++k) {
+    // A band's setups are a scattered part of the pass's (band_setups.h).
+    if (k + BandSetups::kAhead < last) fetchSetup(pendingSetups_[entries[k + BandSetups::kAhead].setup]);
+    const CountEntry& e = entries[k];
+    if (e.draw != current) {
+      current = e.draw;
+      const PendingDraw& draw = pending_[current];
+      fragments.emplace(fb_, draw.state, draw.shader, stats, nullptr);
+      fragments->countInto(target);
+      band = draw.region;
+      band.y = std::max(y0, draw.region.y);
+      band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
+    }
+    rasterizeOne(*pendingSetups_[e.setup], band, *fragments);
+  }
+}
+
+// One band of rows a thread, of equal estimated work; a thread counts its own band's setups from
+// the front, into the framebuffer's stencil, and then, while any band has setups left, takes the
+// last of them — from the band with the most left — into a stencil of its own, added to the
+// framebuffer's at the end. A setup is started in every band it meets, and at two threads there
+// are two bands (three a thread, as a shaded pass has, cut a volume side up to six times); no
+// band of a shrinking share is needed to even out the threads' ends.
+void Renderer::countByBands(int minY, int maxY) {
+  clearsNow();  // before every draw: the counts start from the cleared stencil
+  const int bands = splitIntoBands(minY, maxY, threads(), RowWork::Shares::Equal);
+  if (countBandCount_ < size_t(bands)) {
+    countBands_ = std::make_unique<CountBand[]>(size_t(bands));
+    countBandCount_ = size_t(bands);
+  }
+  for (int b = 0; b < bands; ++b) countBands_[size_t(b)].claims.close();
+  const size_t pixels = fb_.pixelCount();
+  std::vector<std::vector<uint8_t>>& extra = extraStencils(size_t(bands), pixels);
+  countTasks_.assign(size_t(bands), CountTask{});
+  auto rowsOf = [&](int b) { return std::pair{bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1}; };
+  // Setups a claim takes: a kClaimShare-th of a band's share of those left, so that the last
+  // claims, small, end the threads together.
+  auto claimSize = [bands](uint32_t left) { return std::max<uint32_t>(1, left / uint32_t(kClaimShare * bands)); };
+  auto countBand = [&](int task) {
+    CountBand& own = countBands_[size_t(task)];
+    CountTask& mine = countTasks_[size_t(task)];
+    const auto [y0, y1] = rowsOf(task);
+    collectBandEntries(y0, y1, own.entries);
+    own.claims.open(uint32_t(own.entries.size()));
+    for (uint32_t first, last; own.claims.claimFront(claimSize(own.claims.left()), first, last);)
+      countEntries(own.entries, first, last, y0, y1, fb_.stencil().data(), mine.stats);
+    for (;;) {
+      int from = -1;
+      uint32_t most = 0;
+      for (int b = 0; b < bands; ++b)
+        if (const uint32_t left = countBands_[size_t(b)].claims.left(); left > most) {
+          most = left;
+          from = b;
+        }
+      if (from < 0) break;
+      uint32_t first, last;
+      if (!countBands_[size_t(from)].claims.claimBack(claimSize(most), first, last)) continue;
+      const auto [b0, b1] = rowsOf(from);
+      countEntries(countBands_[size_t(from)].entries, first, last, b0, b1, extra[size_t(task)].data(), mine.stats);
+      mine.minY = std::min(mine.minY, b0);
+      mine.maxY = std::max(mine.maxY, b1);
+    }
+  };
+
+  try {
+    pool_->run(bands, countBand);
+  } catch (...) {
+    for (size_t k = 0; k < size_t(bands); ++k) std::fill(extra[k].begin(), extra[k].end(), uint8_t(0));
+    throw;
+  }
+  addExtraStencils(extra, 0);
+  for (const CountTask& t : countTasks_) stats_ += t.stats;
+  ++bandsCountedFlushes_;
 }
 
 }  // namespace shadowref

@@ -723,7 +723,7 @@ void Renderer::parallelFor(int count, const std::function<void(int)>& task) {
 // the pending triangles' bounding boxes and a quarter of its cleared pixels, plus a row's and a
 // triangle's fixed costs. The queued draws' triangles were counted on the threads
 // (assembleQueued); the others are counted here.
-int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
+int Renderer::splitIntoBands(int minY, int maxY, int maxBands, RowWork::Shares shares) {
   for (size_t g = 0; g < queuedRowWorkCount_; ++g) rowWork_.add(queuedRowWork_[g].work);
   queuedRowWorkCount_ = 0;
   const bool byShape = RowWork::weighsShapes(pendingSetups_.size());
@@ -738,7 +738,7 @@ int Renderer::splitIntoBands(int minY, int maxY, int maxBands) {
   if (const StencilFaceState* gate = stencilGate()) {
     rowWork_.weighByStencil(fb_.stencil().data(), fb_.width(), minY, maxY, *gate);
   }
-  return rowWork_.split(minY, maxY, maxBands, kMinBandRows, bandFirstRow_);
+  return rowWork_.split(minY, maxY, maxBands, kMinBandRows, bandFirstRow_, shares);
 }
 
 namespace {
@@ -787,7 +787,8 @@ void Renderer::flush() {
   const bool parallel = pool_ && candidates >= kParallelThreshold;
   const int threadBands = parallel ? pool_->threadCount() * kBandsPerThread : 1;
   if (parallel && countsInAnyOrder()) {
-    countByTriangles();
+    if (countsByTriangles()) countByTriangles();
+    else countByBands(minY, maxY);
     clearPending();
     return;
   }

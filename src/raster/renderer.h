@@ -22,6 +22,7 @@
 #include "raster/setup_reuse.h"
 #include "raster/thread_pool.h"
 #include "raster/triangle_setup.h"
+#include "raster/two_ended_claims.h"
 #include "raster/vertex.h"
 
 namespace shadowref {
@@ -82,8 +83,10 @@ class Renderer {
   const RasterStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
 
-  // How many flushes were counted by runs of triangles (countByTriangles) rather than by bands.
+  // How many flushes were counted by runs of triangles (countByTriangles), and how many by bands
+  // that the threads done with their own help to finish (countByBands), rather than by bands.
   uint64_t flushesCountedByTriangles() const { return trianglesCountedFlushes_; }
+  uint64_t flushesCountedByBands() const { return bandsCountedFlushes_; }
 
   // Reports every fragment at pixel (x, y) to the observer (nullptr to stop).
   void watchPixel(int x, int y, FragmentObserver* observer) {
@@ -195,13 +198,30 @@ class Renderer {
 
   // A flush of draws that only add to the stencil modulo 256 (the shadow volumes' counting:
   // FragmentProcessor::onlyAddsToStencil), with clears only before them, gives the same bytes in
-  // any order of its triangles. It is counted by runs of triangles instead of bands of rows: no
-  // triangle is cut between bands, and the threads take the runs as they come; each thread adds
-  // into a stencil of its own, and the stencils are added up at the end (counting_flush.cpp).
+  // any order of its triangles (countsInAnyOrder). It is counted either by runs of triangles: no
+  // triangle is cut between bands, and the threads take the runs as they come (countByTriangles);
+  // or by one band of rows a thread, which the threads done with their own help to finish, taking
+  // the last of its triangles (countByBands). A thread adds what is not its own band's into a
+  // stencil of its own, and those stencils are added up at the end (counting_flush.cpp).
   bool countsInAnyOrder() const;
+  bool countsByTriangles() const;
   void countByTriangles();
+  void countByBands(int minY, int maxY);
   int cutIntoRuns(size_t runs);
-  void addExtraStencils(std::vector<std::vector<uint8_t>>& extra);
+  void addExtraStencils(std::vector<std::vector<uint8_t>>& extra, size_t firstTask);
+  // A setup of pending_[draw] that meets a band's rows (pendingSetups_[setup]).
+  struct CountEntry {
+    uint32_t draw, setup;
+  };
+  // A band of countByBands: the setups meeting its rows, in submission order, which its task
+  // claims from the front and others from the back.
+  struct CountBand {
+    std::vector<CountEntry> entries;
+    TwoEndedClaims claims;
+  };
+  void collectBandEntries(int y0, int y1, std::vector<CountEntry>& entries) const;
+  void countEntries(const std::vector<CountEntry>& entries, uint32_t first, uint32_t last, int y0, int y1,
+                    uint8_t* target, RasterStats& stats) const;
   struct CountPiece {
     size_t draw = 0, first = 0, last = 0;  // setups [first, last) of pending_[draw]
   };
@@ -214,7 +234,10 @@ class Renderer {
   std::vector<CountPiece> countPieces_;
   std::vector<size_t> countRunFirst_;  // run r: pieces [countRunFirst_[r], countRunFirst_[r + 1])
   std::vector<CountTask> countTasks_;
+  std::unique_ptr<CountBand[]> countBands_;  // countByBands's, kept from flush to flush
+  size_t countBandCount_ = 0;
   uint64_t trianglesCountedFlushes_ = 0;
+  uint64_t bandsCountedFlushes_ = 0;
 
   Framebuffer& fb_;
   const uint64_t serial_;  // this renderer among all made in the process (SetupReuse)
@@ -243,7 +266,7 @@ class Renderer {
   std::vector<SetupBounds, ConstructLaterAllocator<SetupBounds>> pendingBounds_;  // of each pending setup
   std::vector<std::shared_ptr<const SetupBlock>> pendingBlocks_;  // the setups, as assembly made them (and SetupReuse keeps)
   std::vector<PendingClear> pendingClears_;
-  int splitIntoBands(int minY, int maxY, int maxBands);
+  int splitIntoBands(int minY, int maxY, int maxBands, RowWork::Shares shares = RowWork::Shares::Shrinking);
   const StencilFaceState* stencilGate() const;
   RowWork rowWork_;  // the pending draws' and clears' (those counted so far), which the bands share
   std::vector<int> bandFirstRow_;    // band b: rows [bandFirstRow_[b], bandFirstRow_[b + 1])

@@ -120,13 +120,15 @@ std::vector<int64_t> RowWork::rowWeights(int minY, int maxY) const {
   return work;
 }
 
-int RowWork::split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow) {
+int RowWork::split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow, Shares shares) {
   std::vector<int64_t>& work = work_;
   const int64_t total = weigh(minY, maxY, work);
   const size_t rows = work.size();
-  const int64_t parts = int64_t(maxBands) * (maxBands + 3) / 2;  // (maxBands + 1) + … + 2
+  const bool equal = shares == Shares::Equal;
+  // Shrinking: band b of n takes n + 1 - b parts of (n + 1) + … + 2; equal: one part of n.
+  const int64_t parts = equal ? maxBands : int64_t(maxBands) * (maxBands + 3) / 2;
   firstRow.assign(1, minY);
-  int64_t done = 0, partsUpTo = maxBands + 1;  // the parts of bands 0 … the current one
+  int64_t done = 0, partsUpTo = equal ? 1 : maxBands + 1;  // the parts of bands 0 … the current one
   size_t start = 0;
   for (size_t r = 0; r < rows; ++r) {
     done += work[r];
@@ -135,7 +137,7 @@ int RowWork::split(int minY, int maxY, int maxBands, int minRows, std::vector<in
     if (full && r + 1 - start >= size_t(minRows) && rows - (r + 1) >= size_t(minRows) && band + 1 < maxBands) {
       firstRow.push_back(minY + int(r) + 1);
       start = r + 1;
-      partsUpTo += maxBands - band;  // band + 1's share: maxBands + 1 - (band + 1)
+      partsUpTo += equal ? 1 : maxBands - band;  // band + 1's share: maxBands + 1 - (band + 1)
     }
   }
   firstRow.push_back(maxY + 1);

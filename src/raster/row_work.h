@@ -77,7 +77,13 @@ class RowWork {
   // work — maxBands + 1, maxBands, … 2 parts — and the last ones, small, even out the threads'
   // ends. The city's shadow volumes crowd into the lower rows: equal rows would leave one thread
   // most of them.
-  int split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow);
+  int split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow) {
+    return split(minY, maxY, maxBands, minRows, firstRow, Shares::Shrinking);
+  }
+  // The same with every band an equal share (Shares::Equal): bands that other threads help to
+  // finish (Renderer::countByBands) need no small ones at the end.
+  enum class Shares { Shrinking, Equal };
+  int split(int minY, int maxY, int maxBands, int minRows, std::vector<int>& firstRow, Shares shares);
   // Rows [minY, maxY]'s estimated work, in 1/kUnit of a pixel (what split cuts).
   std::vector<int64_t> rowWeights(int minY, int maxY) const;
   static constexpr int64_t kUnit = 256;

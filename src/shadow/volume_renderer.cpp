@@ -1,7 +1,9 @@
 #include "shadow/volume_renderer.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
+#include <numeric>
 
 #include "raster/clear.h"
 #include "raster/fragment_shader.h"
@@ -105,8 +107,17 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
     how.push_back(countingFor(method, *p.instance, scene, view, light));
   }
   if (volumes.size() < casters.size()) volumes.resize(casters.size());
-  renderer.parallelFor(int(casters.size()), [&](int i) {
-    volumes[size_t(i)].build(*casters[size_t(i)], light, scene.shadow, how[size_t(i)] == StencilCounting::ZFail);
+  // The largest casters' volumes first: the threads take the builds one at a time, and one that
+  // starts a large build last keeps the other waiting (the pumpkins' six pumpkins came after the
+  // porch's boards, and 6 % of the threads' time in this run went unused).
+  std::vector<size_t> largestFirst(casters.size());
+  std::iota(largestFirst.begin(), largestFirst.end(), size_t(0));
+  std::stable_sort(largestFirst.begin(), largestFirst.end(), [&](size_t a, size_t b) {
+    return casters[a]->instance->shadowMesh->triangles.size() > casters[b]->instance->shadowMesh->triangles.size();
+  });
+  renderer.parallelFor(int(casters.size()), [&](int k) {
+    const size_t i = largestFirst[size_t(k)];
+    volumes[i].build(*casters[i], light, scene.shadow, how[i] == StencilCounting::ZFail);
   });
   // The counting states of each kind, made once for the pass rather than once a caster.
   const std::vector<RenderState> zpassStates = volumePassStates(base, StencilCounting::ZPass, counting);

@@ -52,6 +52,21 @@ TEST_CASE("rows without triangles are cut into shrinking shares of equal rows", 
   CHECK(first == std::vector<int>{10, 30, 42});
 }
 
+TEST_CASE("rows without triangles are cut into equal shares when asked", "[raster][bands]") {
+  RowWork work;
+  work.reset(64);
+  std::vector<int> first;
+  // Every row weighs 1 pixel: four bands of 16 rows; three of 64 rows end where 3 (r + 1) >= 64
+  // and >= 128: r + 1 = 22, 43.
+  using Shares = RowWork::Shares;
+  CHECK(work.split(0, 63, 4, 8, first, Shares::Equal) == 4);
+  CHECK(first == std::vector<int>{0, 16, 32, 48, 64});
+  CHECK(work.split(0, 63, 3, 8, first, Shares::Equal) == 3);
+  CHECK(first == std::vector<int>{0, 22, 43, 64});
+  CHECK(work.split(0, 63, 3, 8, first, Shares::Shrinking) == 3);  // 4, 3 and 2 parts of 9: 28.4, 49.8
+  CHECK(first == std::vector<int>{0, 29, 50, 64});
+}
+
 TEST_CASE("a short triangle's rows weigh by half its box's width inside the region, its first row by 64 more",
           "[raster][bands]") {
   RowWork work;
