@@ -518,6 +518,34 @@ struct CountingRun {
   RasterStats stats;
   uint64_t flushesByTriangles = 0, flushesByBands = 0;
 };
+// `depth`'s test without its writes, counting like z-fail's volumes: `frontPass` (INCR_WRAP in
+// z-fail's place) and DECR_WRAP on front faces where the depth test passes and fails, the reverse on
+// back faces.
+RenderState countingState(const RenderState& depth, StencilOp frontPass) {
+  RenderState counting = depth;
+  counting.depthWrite = false;
+  counting.stencilTest = true;
+  counting.stencil[FrontFacing].dppass = frontPass;
+  counting.stencil[FrontFacing].dpfail = StencilOp::DecrWrap;
+  counting.stencil[BackFacing].dppass = StencilOp::DecrWrap;
+  counting.stencil[BackFacing].dpfail = StencilOp::IncrWrap;
+  return counting;
+}
+
+// Not vacuous: at least `least` counts above and below the cleared 0 (wrapped to 255 and down),
+// and some failed depth tests, but not all.
+void checkCountsBothWays(const CountingRun& run, int least, uint64_t failedAtLeast) {
+  int positive = 0, negative = 0;
+  for (const uint8_t v : run.fb.stencil()) {
+    positive += v > 0 && v < 128;
+    negative += v >= 128;
+  }
+  CHECK(positive > least);
+  CHECK(negative > least);
+  CHECK(run.stats.depthFailed > failedAtLeast);
+  CHECK(run.stats.depthFailed < run.stats.fragments);
+}
+
 CountingRun renderCounting(const QueuedScene& q, int threads, StencilOp frontPass = StencilOp::IncrWrap,
                            bool clearBetween = false, FragmentObserver* history = nullptr) {
   CountingRun run;
@@ -527,13 +555,7 @@ CountingRun renderCounting(const QueuedScene& q, int threads, StencilOp frontPas
   clearStencil(fb, depth, 7);
   depth.depthTest = true;
   depth.depthFunc = CompareFunc::Less;
-  RenderState counting = depth;
-  counting.depthWrite = false;
-  counting.stencilTest = true;
-  counting.stencil[FrontFacing].dppass = frontPass;
-  counting.stencil[FrontFacing].dpfail = StencilOp::DecrWrap;
-  counting.stencil[BackFacing].dppass = StencilOp::DecrWrap;
-  counting.stencil[BackFacing].dpfail = StencilOp::IncrWrap;
+  const RenderState counting = countingState(depth, frontPass);
   Renderer r(fb, threads);
   r.draw({.state = &depth, .vertices = q.gridVertices, .indices = q.gridIndices});
   if (history) r.watchPixel(80, 64, history);
@@ -562,13 +584,7 @@ CountingRun renderGridCounting(const QueuedScene& q, int threads) {
   clearDepth(fb, depth, 1.0);
   depth.depthTest = true;
   depth.depthFunc = CompareFunc::Less;
-  RenderState counting = depth;
-  counting.depthWrite = false;
-  counting.stencilTest = true;
-  counting.stencil[FrontFacing].dppass = StencilOp::IncrWrap;
-  counting.stencil[FrontFacing].dpfail = StencilOp::DecrWrap;
-  counting.stencil[BackFacing].dppass = StencilOp::DecrWrap;
-  counting.stencil[BackFacing].dpfail = StencilOp::IncrWrap;
+  const RenderState counting = countingState(depth, StencilOp::IncrWrap);
   Renderer r(fb, threads);
   r.draw({.state = &depth, .vertices = q.soupA, .indices = {}});
   r.draw({.state = &depth, .vertices = q.soupB, .indices = {}});
@@ -594,16 +610,7 @@ TEST_CASE("a counting flush gives the bytes and counts of one thread at any thre
   const QueuedScene q = makeQueuedScene(31, -0.6);  // the grid wholly in front of the near plane
   const CountingRun one = renderCounting(q, 1);
   CHECK(one.flushesByTriangles == 0);
-  // Not vacuous: counts above and below the cleared 0 (wrapped to 255 and down), failed depth tests.
-  int positive = 0, negative = 0;
-  for (const uint8_t v : one.fb.stencil()) {
-    positive += v > 0 && v < 128;
-    negative += v >= 128;
-  }
-  CHECK(positive > 500);
-  CHECK(negative > 500);
-  CHECK(one.stats.depthFailed > 10000);
-  CHECK(one.stats.depthFailed < one.stats.fragments);
+  checkCountsBothWays(one, 500, 10000);
 
   Renderer::useReferencePath(true);
   const CountingRun reference = renderCounting(q, 1);
@@ -630,15 +637,7 @@ TEST_CASE("a counting flush of small triangles, by bands the threads help each o
   const QueuedScene q = makeQueuedScene(34, -8.0);  // far off: small triangles
   const CountingRun one = renderGridCounting(q, 1);
   CHECK(one.flushesByBands == 0);
-  int positive = 0, negative = 0;  // not vacuous: counts above and below the cleared 0
-  for (const uint8_t v : one.fb.stencil()) {
-    positive += v > 0 && v < 128;
-    negative += v >= 128;
-  }
-  CHECK(positive > 300);
-  CHECK(negative > 300);
-  CHECK(one.stats.depthFailed > 1000);
-  CHECK(one.stats.depthFailed < one.stats.fragments);
+  checkCountsBothWays(one, 300, 1000);
   // Eight threads on this machine's two: a band whose task has not started keeps its setups, one
   // started is helped; which setups another thread takes varies from run to run.
   for (int threads : {2, 3, 8, 8, 8}) {
