@@ -83,8 +83,9 @@ class Renderer {
   const RasterStats& stats() const { return stats_; }
   void resetStats() { stats_ = {}; }
 
-  // How many flushes were counted by runs of triangles (countByTriangles), and how many by bands
-  // that the threads done with their own help to finish (countByBands), rather than by bands.
+  // How many counting flushes went by runs of triangles (countByTriangles), and how many by one
+  // band a thread that the threads help each other finish (countByBands); the rest went by the
+  // shaded passes' bands.
   uint64_t flushesCountedByTriangles() const { return trianglesCountedFlushes_; }
   uint64_t flushesCountedByBands() const { return bandsCountedFlushes_; }
 
