@@ -218,9 +218,7 @@ void Renderer::countEntries(const std::vector<CountEntry>& entries, uint32_t fir
       const PendingDraw& draw = pending_[current];
       fragments.emplace(fb_, draw.state, draw.shader, stats, nullptr);
       fragments->countInto(target);
-      band = draw.region;
-      band.y = std::max(y0, draw.region.y);
-      band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
+      band = regionInRows(draw.region, y0, y1);
     }
     rasterizeOne(*pendingSetups_[e.setup], band, *fragments);
   }

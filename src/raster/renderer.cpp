@@ -670,9 +670,7 @@ void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats) const {
     const PendingDraw& draw = pending_[d];
     const int first = std::max(y0, draw.minY), last = std::min(y1, draw.maxY);
     if (first > last) continue;  // also a draw with nothing to rasterize (minY > maxY)
-    Rect band = draw.region;
-    band.y = std::max(y0, draw.region.y);
-    band.height = std::min(y1, draw.region.y + draw.region.height - 1) - band.y + 1;
+    const Rect band = regionInRows(draw.region, y0, y1);
     bool started = false;
     BandSetups setups{std::span(pendingBounds_).subspan(draw.first, draw.count),
                       std::span<const TriangleSetup* const>(pendingSetups_.data() + draw.first, draw.count), first, last,

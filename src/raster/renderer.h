@@ -2,6 +2,7 @@
 // operations, for triangles given in clip space (SPEC.md §1).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -330,6 +331,14 @@ class DeferredDraws {
 
 // The rectangle of pixels a draw may touch: viewport, framebuffer and (if on) scissor.
 Rect drawRegion(const RenderState& state, const Framebuffer& fb);
+
+// The part of a draw's region in rows [y0, y1]: what a band of those rows rasterizes of the draw.
+inline Rect regionInRows(const Rect& region, int y0, int y1) {
+  Rect band = region;
+  band.y = std::max(y0, region.y);
+  band.height = std::min(y1, region.y + region.height - 1) - band.y + 1;
+  return band;
+}
 
 // Guard band G (clipper.h) for a viewport: window coordinates stay within about 2^20 pixels, so
 // fixed-point edge functions fit comfortably in 64 bits.
