@@ -89,11 +89,85 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
   bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(CLI::Range(1, 10000));
   bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 256));
   bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400");
-  bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");
-  bench->add_flag("--runs", args.runs,
-                  "With threads: each run of the thread pool in a frame (tasks, time, idle share, the calling "
-                  "thread's time alone before it)");
+  CLI::Option* csv = bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");
+  CLI::Option* runs =
+      bench->add_flag("--runs", args.runs,
+                      "With threads: each run of the thread pool in a frame (tasks, time, idle share, the calling "
+                      "thread's time alone before it)");
+  bench->add_flag("--alternate", args.alternate,
+                  "Frames at one thread and at --threads threads (2 or more) in turn in one process, the workers "
+                  "kept awake: medians of each and the speed-up, the host's changes of speed falling on both alike")
+      ->excludes(csv)
+      ->excludes(runs);
 }
+
+namespace {
+// The medians of frames timed at one thread count: the frame's and each pass's, in pass order.
+struct FrameTimes {
+  std::vector<double> frameMs;
+  std::map<std::string, std::vector<double>> passMs;
+  std::vector<std::string> passOrder;
+
+  void add(const FrameResult& frame, double ms) {
+    frameMs.push_back(ms);
+    for (const PassTiming& t : frame.timings) {
+      if (!passMs.count(t.pass)) passOrder.push_back(t.pass);
+      passMs[t.pass].push_back(t.milliseconds);
+    }
+  }
+};
+
+// Keeps a pool's workers awake for as long as it lives.
+class AwakePool {
+ public:
+  explicit AwakePool(ThreadPool& pool) : pool_(pool) { pool_.keepAwake(true); }
+  ~AwakePool() { pool_.keepAwake(false); }
+  AwakePool(const AwakePool&) = delete;
+  AwakePool& operator=(const AwakePool&) = delete;
+
+ private:
+  ThreadPool& pool_;
+};
+
+// `bench --alternate`: frame k at `threads` threads for even k, at one thread for odd k. Timed in
+// separate processes, one after the other, two thread counts meet different hosts (this machine's
+// speed drifts by 10-20 % within minutes); in turn in one process they meet the same. The workers
+// stay awake through the one-thread frames, as they are in a stream of frames at `threads`:
+// asleep, the first frames after each switch would time their waking.
+int runAlternating(const BenchArgs& args, const Scene& scene, FrameOptions options, int threads, const char* method) {
+  ThreadPool* pool = threadPoolForThisThread(threads);
+  FrameTimes one, many;
+  try {
+    const AwakePool awake(*pool);
+    for (const int t : {threads, 1}) {  // warm-up: page in buffers and code at each count
+      options.threads = t;
+      renderFrame(scene, options);
+    }
+    for (int i = 0; i < 2 * args.frames; ++i) {
+      options.threads = i % 2 == 0 ? threads : 1;
+      const int64_t start = steadyNanoseconds();
+      const FrameResult frame = renderFrame(scene, options);
+      const double ms = double(steadyNanoseconds() - start) * 1e-6;
+      (i % 2 == 0 ? many : one).add(frame, ms);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "bench: " << e.what() << '\n';
+    return kFailed;
+  }
+  const std::string name = args.scene.scene.empty() ? "<builtin:room>" : args.scene.scene;
+  std::printf("%s, method %s, %dx%d, %d frames at 1 thread and %d at %d in turn, the workers kept awake\n",
+              name.c_str(), method, scene.width, scene.height, args.frames, args.frames, threads);
+  std::printf("  median, ms                  1 thread  %2d threads   speed-up\n", threads);
+  auto line = [](const std::string& what, const std::vector<double>& a, const std::vector<double>& b) {
+    const double ma = median(a), mb = median(b);
+    std::printf("  %-25s %10.3f  %10.3f  %9.3f\n", what.c_str(), ma, mb, mb > 0.0 ? ma / mb : 0.0);
+  };
+  line("frame", one.frameMs, many.frameMs);
+  for (const std::string& pass : many.passOrder)
+    if (one.passMs.count(pass)) line(pass, one.passMs[pass], many.passMs[pass]);
+  return kSuccess;
+}
+}  // namespace
 
 int runBench(const BenchArgs& args) {
   keepFreedMemoryForReuse();
@@ -107,6 +181,14 @@ int runBench(const BenchArgs& args) {
   std::map<std::string, std::vector<double>> passMs;
   std::vector<std::string> passOrder;
   const int threads = args.threads == 0 ? defaultThreadCount() : args.threads;
+  if (args.alternate) {
+    if (threads < 2) {
+      std::cerr << "bench: --alternate sets one thread against more: --threads must be 2 or more"
+                << (args.threads == 0 ? " (0 means this machine's one core)" : "") << '\n';
+      return kBadInput;
+    }
+    return runAlternating(args, *scene, options, threads, shadowref::name(method));
+  }
   ThreadPool* pool = threadPoolForThisThread(threads);  // the one renderFrame's renderers use
   ThreadPool::Times poolTimes;
   std::vector<ThreadPool::RunRecord> runRecords;

@@ -19,6 +19,7 @@ struct BenchArgs {
   int threads = 0;
   bool csv = false;
   bool runs = false;  // --runs: each pool run of a frame
+  bool alternate = false;  // --alternate: frames at one thread and at --threads in turn, in one process
 };
 
 void addBenchCommand(CLI::App& app, BenchArgs& args);

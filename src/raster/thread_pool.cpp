@@ -103,7 +103,8 @@ uint32_t ThreadPool::waitForWork(uint32_t seen) {
   for (int spins = 0;; ++spins) {
     const uint32_t g = generation_.load(std::memory_order_acquire);
     if (g != seen || stop_.load(std::memory_order_acquire)) return g;
-    if ((spins & 63) == 63 && std::chrono::steady_clock::now() > spinUntil) break;
+    if ((spins & 63) == 63 && !awake_.load(std::memory_order_relaxed) && std::chrono::steady_clock::now() > spinUntil)
+      break;
     relax(spins);
   }
   // Sleep. sleepers_ is raised before generation_ is read again and run() raises generation_
@@ -123,6 +124,8 @@ void ThreadPool::workerLoop() {
     drain(seen);
   }
 }
+
+void ThreadPool::keepAwake(bool on) { awake_.store(on, std::memory_order_relaxed); }
 
 void ThreadPool::timeRuns(bool on) {
   taskNanoseconds_ = 0;

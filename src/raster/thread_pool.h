@@ -57,6 +57,13 @@ class ThreadPool {
   };
   const std::vector<RunRecord>& runRecords() const { return records_; }
 
+  // While on, idle workers spin without end instead of sleeping after a while: a run after a long
+  // pause (a frame drawn on one thread in between, `shadowref bench --alternate`) finds them awake,
+  // as a run does in a stream of frames. Off by default: a pool between frames holds no core.
+  void keepAwake(bool on);
+  // Workers asleep on the condition variable now (at most threadCount() - 1).
+  int sleepingWorkers() const { return sleepers_.load(); }
+
   // How many of a run's `left` unclaimed tasks one claim of `threads` threads takes: one task
   // when a thread's share of them is small, a part of that share when it is large (thread_pool.cpp).
   static int claimSize(int left, int threads);
@@ -75,6 +82,7 @@ class ThreadPool {
   std::condition_variable wake_;
   std::atomic<int> sleepers_{0};
   std::atomic<bool> stop_{false};
+  std::atomic<bool> awake_{false};  // keepAwake
   // The current run: its number, and the next task to claim in the low 32 bits of `ticket_`
   // (number in the high bits), so a worker late from an earlier run can never claim a task of
   // this one.

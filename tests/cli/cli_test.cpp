@@ -172,6 +172,38 @@ TEST_CASE("bench --runs lays out a frame's pool runs, which with the gaps add up
   CHECK(one.out.find("runs: none") != std::string::npos);
 }
 
+TEST_CASE("bench --alternate times one thread and more in turn, its speed-up the medians' quotient", "[cli]") {
+  const std::string scene = "scenes/room.yaml -D image.width=160 -D image.height=128";
+  const Run r = run("bench " + scene + " --frames 3 --threads 2 --alternate");
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("3 frames at 1 thread and 3 at 2 in turn, the workers kept awake") != std::string::npos);
+  std::istringstream in(r.out);
+  std::string line;
+  int rows = 0;
+  bool frameRow = false;
+  while (std::getline(in, line)) {
+    char what[64] = {};
+    double one = 0.0, two = 0.0, speedUp = 0.0;
+    if (std::sscanf(line.c_str(), " %63s %lf %lf %lf", what, &one, &two, &speedUp) != 4) continue;
+    INFO(line);
+    CHECK(one > 0.0);
+    CHECK(two > 0.0);
+    // Each median printed to a microsecond, the quotient to a thousandth.
+    const double lo = (one - 0.0005) / (two + 0.0005), hi = (one + 0.0005) / (two - 0.0005);
+    CHECK(speedUp >= lo - 0.0005);
+    CHECK(speedUp <= hi + 0.0005);
+    frameRow = frameRow || std::string(what) == "frame";
+    ++rows;
+  }
+  CHECK(frameRow);
+  CHECK(rows == 4);  // the frame and the room's three passes
+  const Run oneThread = run("bench " + scene + " --frames 1 --threads 1 --alternate");
+  CHECK(oneThread.status == 2);
+  CHECK(oneThread.err.find("--threads must be 2 or more") != std::string::npos);
+  CHECK(run("bench " + scene + " --frames 1 --threads 2 --alternate --csv").status != 0);
+  CHECK(run("bench " + scene + " --frames 1 --threads 2 --alternate --runs").status != 0);
+}
+
 TEST_CASE("the --help text lists every subcommand and exits 0", "[cli]") {
   const Run r = run("--help");
   CHECK(r.status == 0);

@@ -161,3 +161,32 @@ TEST_CASE("the pool's timers: runs, tasks, and task time within the threads' run
     CHECK(pool.runRecords().empty());
   }
 }
+
+namespace {
+// Waits up to two seconds for `count` workers asleep; true when they were.
+bool sleepersReach(const ThreadPool& pool, int count) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (pool.sleepingWorkers() != count) {
+    if (std::chrono::steady_clock::now() > until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+}  // namespace
+
+TEST_CASE("idle workers sleep after their spin, and not while the pool is kept awake", "[raster][threads]") {
+  using namespace std::chrono_literals;
+  ThreadPool pool(3);
+  pool.run(4, [](int) {});
+  CHECK(sleepersReach(pool, 2));  // the spin is a few milliseconds
+  pool.keepAwake(true);
+  pool.run(4, [](int) {});  // wakes them
+  REQUIRE(sleepersReach(pool, 0));
+  std::this_thread::sleep_for(50ms);  // many spins' time
+  CHECK(pool.sleepingWorkers() == 0);
+  std::vector<std::atomic<int>> hits(64);
+  pool.run(64, [&](int i) { hits[size_t(i)].fetch_add(1); });  // awake workers still take every task once
+  for (const std::atomic<int>& h : hits) CHECK(h.load() == 1);
+  pool.keepAwake(false);
+  CHECK(sleepersReach(pool, 2));
+}
