@@ -89,7 +89,8 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
   bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(CLI::Range(1, 10000));
   bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 256));
   bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400");
-  CLI::Option* csv = bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");
+  CLI::Option* csv =
+      bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");
   CLI::Option* runs =
       bench->add_flag("--runs", args.runs,
                       "With threads: each run of the thread pool in a frame (tasks, time, idle share, the calling "
