@@ -103,7 +103,9 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
 }
 
 namespace {
-// The medians of frames timed at one thread count: the frame's and each pass's, in pass order.
+std::string sceneName(const BenchArgs& args) { return args.scene.scene.empty() ? "<builtin:room>" : args.scene.scene; }
+
+// Frames timed at one thread count: each frame's time and each pass's, the passes in order.
 struct FrameTimes {
   std::vector<double> frameMs;
   std::map<std::string, std::vector<double>> passMs;
@@ -155,7 +157,7 @@ int runAlternating(const BenchArgs& args, const Scene& scene, FrameOptions optio
     std::cerr << "bench: " << e.what() << '\n';
     return kFailed;
   }
-  const std::string name = args.scene.scene.empty() ? "<builtin:room>" : args.scene.scene;
+  const std::string name = sceneName(args);
   std::printf("%s, method %s, %dx%d, %d frames at 1 thread and %d at %d in turn, the workers kept awake\n",
               name.c_str(), method, scene.width, scene.height, args.frames, args.frames, threads);
   std::printf("  median, ms                  1 thread  %2d threads   speed-up\n", threads);
@@ -178,9 +180,7 @@ int runBench(const BenchArgs& args) {
   options.threads = args.threads;
   if (!parseMethodOrReport(args.method, options.method)) return kBadInput;
   const ShadowMethod method = options.method.value_or(scene->shadow.method);
-  std::vector<double> frameMs;
-  std::map<std::string, std::vector<double>> passMs;
-  std::vector<std::string> passOrder;
+  FrameTimes times;
   const int threads = args.threads == 0 ? defaultThreadCount() : args.threads;
   if (args.alternate) {
     if (threads < 2) {
@@ -201,12 +201,8 @@ int runBench(const BenchArgs& args) {
       const int64_t start = steadyNanoseconds();
       const FrameResult frame = renderFrame(*scene, options);
       const int64_t end = steadyNanoseconds();
-      frameMs.push_back(double(end - start) * 1e-6);
+      times.add(frame, double(end - start) * 1e-6);
       frameSpans.push_back({start, end});
-      for (const PassTiming& t : frame.timings) {
-        if (!passMs.count(t.pass)) passOrder.push_back(t.pass);
-        passMs[t.pass].push_back(t.milliseconds);
-      }
     }
     if (pool) {
       poolTimes = pool->times();
@@ -217,17 +213,18 @@ int runBench(const BenchArgs& args) {
     std::cerr << "bench: " << e.what() << '\n';
     return kFailed;
   }
-  const std::string name = args.scene.scene.empty() ? "<builtin:room>" : args.scene.scene;
+  const std::string name = sceneName(args);
   if (args.csv) {
     std::printf("%s,%s,%d,%d,%d,%d,%.3f\n", name.c_str(), shadowref::name(method), threads, scene->width, scene->height,
-                args.frames, median(frameMs));
+                args.frames, median(times.frameMs));
     return kSuccess;
   }
   std::printf("%s, method %s, %dx%d, %d thread%s, %d frames\n", name.c_str(), shadowref::name(method), scene->width,
               scene->height, threads, threads == 1 ? "" : "s", args.frames);
-  std::printf("  frame (median)            %9.3f ms\n", median(frameMs));
-  for (const std::string& pass : passOrder) std::printf("  %-25s %9.3f ms\n", pass.c_str(), median(passMs[pass]));
-  if (pool) printPoolTimes(poolTimes, threads, frameMs);
+  std::printf("  frame (median)            %9.3f ms\n", median(times.frameMs));
+  for (const std::string& pass : times.passOrder)
+    std::printf("  %-25s %9.3f ms\n", pass.c_str(), median(times.passMs[pass]));
+  if (pool) printPoolTimes(poolTimes, threads, times.frameMs);
   if (args.runs) {
     if (pool) printRuns(runRecords, frameSpans, threads);
     else std::printf("  runs: none (one thread draws without the pool)\n");
