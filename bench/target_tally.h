@@ -2,8 +2,9 @@
 // table of targets (issue_targets.h, the end of its output) read back, and for every figure in how
 // many runs it was met. On a shared host one run is a sample: this shows which figures a run meets
 // nearly always, which depend on the host, and — for two threads / one — how that follows the
-// host's capacity for two threads measured beside each figure, and how often llvmpipe's own two
-// threads / one reached the same line in the same runs.
+// host's capacity for two threads measured beside each figure, how often llvmpipe's own two
+// threads / one reached the same line in the same runs, and — where the target is judged on frames
+// in turn in one process — how often shadowref's separate processes did.
 #pragma once
 
 #include <algorithm>
@@ -143,6 +144,11 @@ class TargetTally {
             (*capacity >= line ? room : none).add(i, cellMet(target->cells[i]));
             roomCells += *capacity >= line;
           }
+        } else if (row.what.rfind("separate processes, 2 threads / 1", 0) == 0) {
+          // Beside a target judged on frames in turn: the same ratio from separate processes.
+          Counts& c = counts(target->what + "|separate", "  separate processes >= " + threshold + ", same runs");
+          for (size_t i = 0; i < row.cells.size(); ++i)
+            if (const std::optional<double> v = tally_detail::leadingNumber(row.cells[i])) c.add(i, *v >= line);
         } else if (row.what.rfind("llvmpipe's 2 threads / 1", 0) == 0) {
           Counts& c = counts(target->what + "|llvmpipe", "  llvmpipe's 2 threads / 1 >= " + threshold + ", same runs");
           for (size_t i = 0; i < row.cells.size(); ++i) {

@@ -11,6 +11,7 @@
 #include "raster/allocator_tuning.h"
 #include "raster/thread_pool.h"
 #include "shadow/frame_renderer.h"
+#include "shadow/frames_in_turn.h"
 #include "shadow/shadow_method.h"
 
 namespace shadowref::cli {
@@ -120,39 +121,12 @@ struct FrameTimes {
   }
 };
 
-// Keeps a pool's workers awake for as long as it lives.
-class AwakePool {
- public:
-  explicit AwakePool(ThreadPool& pool) : pool_(pool) { pool_.keepAwake(true); }
-  ~AwakePool() { pool_.keepAwake(false); }
-  AwakePool(const AwakePool&) = delete;
-  AwakePool& operator=(const AwakePool&) = delete;
-
- private:
-  ThreadPool& pool_;
-};
-
-// `bench --alternate`: frame k at `threads` threads for even k, at one thread for odd k. Timed in
-// separate processes, one after the other, two thread counts meet different hosts (this machine's
-// speed drifts by 10-20 % within minutes); in turn in one process they meet the same. The workers
-// stay awake through the one-thread frames, as they are in a stream of frames at `threads`:
-// asleep, the first frames after each switch would time their waking.
-int runAlternating(const BenchArgs& args, const Scene& scene, FrameOptions options, int threads, const char* method) {
-  ThreadPool* pool = threadPoolForThisThread(threads);
+// `bench --alternate`: frames at `threads` threads and at one thread in turn (renderFramesInTurn).
+int runAlternating(const BenchArgs& args, const Scene& scene, const FrameOptions& options, int threads, const char* method) {
   FrameTimes one, many;
   try {
-    const AwakePool awake(*pool);
-    for (const int t : {threads, 1}) {  // warm-up: page in buffers and code at each count
-      options.threads = t;
-      renderFrame(scene, options);
-    }
-    for (int i = 0; i < 2 * args.frames; ++i) {
-      options.threads = i % 2 == 0 ? threads : 1;
-      const int64_t start = steadyNanoseconds();
-      const FrameResult frame = renderFrame(scene, options);
-      const double ms = double(steadyNanoseconds() - start) * 1e-6;
-      (i % 2 == 0 ? many : one).add(frame, ms);
-    }
+    renderFramesInTurn(scene, options, {.threads = threads, .warmUp = 1, .frames = args.frames},
+                       [&](int t, const FrameResult& frame, double ms) { (t == 1 ? one : many).add(frame, ms); });
   } catch (const std::exception& e) {
     std::cerr << "bench: " << e.what() << '\n';
     return kFailed;

@@ -108,4 +108,35 @@ TEST_CASE("tally: a run meeting every two-thread figure is counted, for each ren
   CHECK(tally.text().find("in every two-thread cell: 1 (every two-thread figure met in 1 of them)") != std::string::npos);
 }
 
+
+TEST_CASE("tally: a target judged in turn counts its separate processes' figure beside it", "[bench]") {
+  // Runs from round 34 on judge two threads / one on frames in turn and print the ratio of
+  // separate processes under it; a run from before judged the separate processes themselves.
+  auto inTurnRun = [](double turn0, double turn1, double separate0, double separate1) {
+    TargetTable t({"room", "city-64"});
+    t.atLeast("per vertex: in turn, 2 threads / 1", 1.8, {turn0, turn1});
+    t.information("  separate processes, 2 threads / 1", {separate0, separate1});
+    t.information("  the host's capacity for two threads", {1.97, 1.92});
+    return "commit: ddddddd\n\n" + t.text();
+  };
+  TargetTally tally;
+  tally.add("old.txt", read(runText("aaaaaaa", 1.85, 1.62, 1.97, 1.55, 1.9, 1.3, true, 0.991)));
+  tally.add("a.txt", read(inTurnRun(1.86, 1.83, 1.79, 1.84)));
+  tally.add("b.txt", read(inTurnRun(1.91, 1.78, 1.88, 1.60)));
+  const std::string text = tally.text();
+  INFO(text);
+  auto row = [&](const std::string& label, const std::string& room, const std::string& city) {
+    return targetLine(label, {room, city});
+  };
+  // The old instrument's row and the new one's are counted apart.
+  CHECK(text.find(row("per vertex: 2 threads / 1 >= 1.8", "1/1", "0/1")) != std::string::npos);
+  CHECK(text.find(row("per vertex: in turn, 2 threads / 1 >= 1.8", "2/2", "1/2")) != std::string::npos);
+  // Separate processes: room 1.79, 1.88 -> 1 of 2; city 1.84, 1.60 -> 1 of 2.
+  CHECK(text.find(row("  separate processes >= 1.8, same runs", "1/2", "1/2")) != std::string::npos);
+  // Capacity 1.97 / 1.92 in both new runs: room met in both, the city in a alone.
+  CHECK(text.find(row("  where the host's capacity was >= 1.8", "2/2", "1/2")) != std::string::npos);
+  // Every two-thread figure met: a (1.86, 1.83) only.
+  CHECK(text.find("runs with every two-thread figure met: shadowref 1, llvmpipe ") != std::string::npos);
+}
+
 }  // namespace shadowref::bench
