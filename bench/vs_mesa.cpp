@@ -1095,16 +1095,14 @@ void printTargets(const std::vector<SceneCase>& cases, const std::vector<std::ve
   table.atLeast("per pixel, 1 thread: x llvmpipe", 1.0, ratio(kLp1, kSr1));
   table.atLeast("per pixel, 2 threads: x llvmpipe", 1.0, ratio(kLp2, kSr2));
   table.atLeast("per pixel: x softpipe", 10.0, ratio(kSopp, kSr1));
-  const auto crossCore = [&](Column c) {
+  // Per scene, the median of one of a configuration's lists over its runs.
+  const auto medianOf = [&](Column c, std::vector<double> Measured::*list) {
     std::vector<double> v;
-    for (const std::vector<Measured>& m : all) v.push_back(median(m[size_t(c)].crossCore));
+    for (const std::vector<Measured>& m : all) v.push_back(median(m[size_t(c)].*list));
     return v;
   };
-  const auto inTurn = [&](Column c) {
-    std::vector<double> v;
-    for (const std::vector<Measured>& m : all) v.push_back(median(m[size_t(c)].turnRatios));
-    return v;
-  };
+  const auto crossCore = [&](Column c) { return medianOf(c, &Measured::crossCore); };
+  const auto inTurn = [&](Column c) { return medianOf(c, &Measured::turnRatios); };
   table.atLeast("per vertex: in turn, 2 threads / 1", 1.8, inTurn(kSrgTurn));
   table.information("  separate processes, 2 threads / 1", ratio(kSrg1, kSrg2));
   table.information("  the host's capacity for two threads", ratio(kSrg1, kSrgPair));
