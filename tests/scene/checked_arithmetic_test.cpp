@@ -1,6 +1,6 @@
 #include "scene/checked_arithmetic.h"
 
-#include <catch2/catch_test_macros.hpp>
+#include <catch2/catch.hpp>
 
 #include <cstdint>
 #include <limits>
