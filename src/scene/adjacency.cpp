@@ -1,8 +1,11 @@
 #include "scene/adjacency.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
 #include <unordered_map>
+#include <utility>
 
 namespace shadowref {
 
@@ -172,26 +175,120 @@ void computeSmoothNormals(Mesh& mesh) {
   }
 }
 
+namespace {
+
+// The bits of a vector exactly as they are (-0.0 and +0.0 apart): two triangles whose unit normals
+// have the same key get bit-identical crease sums.
+PositionKey rawKeyOf(const glm::dvec3& v) {
+  PositionKey k{};
+  std::memcpy(k.bits, &v, sizeof k.bits);
+  return k;
+}
+
+// The octahedral direction bin (about 15 degrees wide) of a unit vector, for the binned sums.
+constexpr int kDirectionBins = 12;
+int directionBin(const glm::dvec3& u) {
+  const double l1 = std::abs(u.x) + std::abs(u.y) + std::abs(u.z);
+  if (!(l1 > 0.0)) return kDirectionBins * kDirectionBins;  // the zero normal of a degenerate triangle
+  double x = u.x / l1, y = u.y / l1;
+  if (u.z < 0.0) {
+    const double fx = (1.0 - std::abs(y)) * (x < 0.0 ? -1.0 : 1.0), fy = (1.0 - std::abs(x)) * (y < 0.0 ? -1.0 : 1.0);
+    x = fx, y = fy;
+  }
+  auto cell = [](double c) { return std::clamp(static_cast<int>((c * 0.5 + 0.5) * kDirectionBins), 0, kDirectionBins - 1); };
+  return cell(x) * kDirectionBins + cell(y);
+}
+
+}  // namespace
+
 void computeCreaseNormals(Mesh& mesh, double creaseDegrees) {
   const double cosCrease = std::cos(glm::radians(creaseDegrees));
   const size_t triangleCount = mesh.triangles.size();
   std::vector<glm::dvec3> area(triangleCount), unit(triangleCount);
-  // Triangles around each distinct position, in triangle order.
+  // Corners grouped by position, each group's corners in triangle order (counting sort: linear).
   std::unordered_map<PositionKey, uint32_t, PositionKeyHash> positionId;
-  std::vector<std::vector<uint32_t>> around;
-  std::vector<glm::uvec3> cornerIds(triangleCount);
+  std::vector<uint32_t> cornerGroup(3 * triangleCount), groupStart;
   for (size_t t = 0; t < triangleCount; ++t) {
     const glm::uvec3 tri = mesh.triangles[t];
     area[t] = areaVector(mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]);
     unit[t] = glm::length(area[t]) > 0.0 ? glm::normalize(area[t]) : glm::dvec3(0.0);
     for (int i = 0; i < 3; ++i) {
       auto [it, inserted] =
-          positionId.try_emplace(keyOf(mesh.positions[tri[i]]), static_cast<uint32_t>(around.size()));
-      if (inserted) around.emplace_back();
-      around[it->second].push_back(static_cast<uint32_t>(t));
-      cornerIds[t][i] = it->second;
+          positionId.try_emplace(keyOf(mesh.positions[tri[i]]), static_cast<uint32_t>(groupStart.size()));
+      if (inserted) groupStart.push_back(0);
+      ++groupStart[it->second];
+      cornerGroup[3 * t + i] = it->second;
     }
   }
+  positionId = {};
+  uint32_t running = 0;
+  for (uint32_t& start : groupStart) running += std::exchange(start, running);
+  groupStart.push_back(running);
+  std::vector<uint32_t> members(3 * triangleCount), fill(groupStart.begin(), groupStart.end() - 1);
+  for (uint32_t c = 0; c < 3 * triangleCount; ++c) members[fill[cornerGroup[c]]++] = c;
+  fill = {};
+  cornerGroup = {};
+
+  // The normal of a corner of triangle t depends only on its group and on unit[t]: the sum of
+  // area[u] over the group's triangles u with dot(unit[u], unit[t]) >= cos(crease), in triangle
+  // order. It is computed once per distinct unit normal in the group. When that exact rule would
+  // cost more than kExactWork steps for one group (a cone's apex with a million sides), the group's
+  // triangles are summed per direction bin instead, and each bin takes the bins whose mean normals
+  // lie within the crease angle of its own: bounded work, smooth where the exact rule is smooth.
+  constexpr uint64_t kExactWork = uint64_t{1} << 20;
+  constexpr size_t kExactDistinct = 16;
+  std::vector<glm::dvec3> cornerNormal(3 * triangleCount);
+  std::vector<uint32_t> slotOfMember;
+  std::vector<glm::dvec3> slotUnit, slotSum;
+  for (size_t g = 0; g + 1 < groupStart.size(); ++g) {
+    const std::span<const uint32_t> group(members.data() + groupStart[g], groupStart[g + 1] - groupStart[g]);
+    slotUnit.clear();
+    slotOfMember.resize(group.size());
+    // Distinct unit normals in order of first appearance: a short scan for the usual handful of
+    // corners, a map of the group's own size beyond (clearing one map shared by all groups would
+    // cost its largest bucket count for every group).
+    constexpr size_t kScan = 32;
+    std::unordered_map<PositionKey, uint32_t, PositionKeyHash> slotOf;
+    for (size_t j = 0; j < group.size(); ++j) {
+      const glm::dvec3& u = unit[group[j] / 3];
+      const PositionKey key = rawKeyOf(u);
+      uint32_t slot = static_cast<uint32_t>(slotUnit.size());
+      if (group.size() <= kScan) {
+        for (uint32_t s = 0; s < slotUnit.size(); ++s)
+          if (rawKeyOf(slotUnit[s]) == key) slot = s;
+      } else {
+        slot = slotOf.try_emplace(key, slot).first->second;
+      }
+      if (slot == slotUnit.size()) slotUnit.push_back(u);
+      slotOfMember[j] = slot;
+    }
+    slotSum.assign(slotUnit.size(), glm::dvec3(0.0));
+    if (slotUnit.size() <= kExactDistinct || uint64_t{group.size()} * slotUnit.size() <= kExactWork) {
+      for (size_t s = 0; s < slotUnit.size(); ++s)
+        for (uint32_t c : group)
+          if (glm::dot(unit[c / 3], slotUnit[s]) >= cosCrease) slotSum[s] += area[c / 3];
+    } else {
+      constexpr int kBins = kDirectionBins * kDirectionBins + 1;
+      std::vector<glm::dvec3> binArea(kBins, glm::dvec3(0.0)), binMean(kBins, glm::dvec3(0.0)),
+          binSum(kBins, glm::dvec3(0.0));
+      std::vector<bool> used(kBins, false);
+      for (uint32_t c : group) {
+        const int b = directionBin(unit[c / 3]);
+        binArea[b] += area[c / 3];
+        if (!used[b]) binMean[b] = unit[c / 3];
+        used[b] = true;
+      }
+      for (int b = 0; b < kBins; ++b)
+        if (glm::length(binArea[b]) > 0.0) binMean[b] = glm::normalize(binArea[b]);
+      for (int b = 0; b < kBins; ++b)
+        for (int o = 0; o < kBins; ++o)
+          if (used[b] && used[o] && glm::dot(binMean[o], binMean[b]) >= cosCrease) binSum[b] += binArea[o];
+      for (size_t s = 0; s < slotUnit.size(); ++s) slotSum[s] = binSum[directionBin(slotUnit[s])];
+    }
+    for (glm::dvec3& n : slotSum) n = glm::length(n) > 0.0 ? glm::normalize(n) : glm::dvec3(0.0, 1.0, 0.0);
+    for (size_t j = 0; j < group.size(); ++j) cornerNormal[group[j]] = slotSum[slotOfMember[j]];
+  }
+
   // New render vertices: one per (position, normal) pair, found through a map keyed by both.
   struct VertexKey {
     PositionKey p, n;
@@ -208,10 +305,7 @@ void computeCreaseNormals(Mesh& mesh, double creaseDegrees) {
     glm::uvec3& tri = mesh.triangles[t];
     glm::uvec3 out;
     for (int i = 0; i < 3; ++i) {
-      glm::dvec3 n(0.0);
-      for (uint32_t u : around[cornerIds[t][i]])
-        if (glm::dot(unit[u], unit[t]) >= cosCrease) n += area[u];
-      n = glm::length(n) > 0.0 ? glm::normalize(n) : glm::dvec3(0.0, 1.0, 0.0);
+      const glm::dvec3 n = cornerNormal[3 * t + i];
       const glm::dvec3 p = mesh.positions[tri[i]];
       auto [it, inserted] =
           vertexOf.try_emplace(VertexKey{keyOf(p), keyOf(n)}, static_cast<uint32_t>(positions.size()));
