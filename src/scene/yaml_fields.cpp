@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "scene/resource_limits.h"
+
 namespace shadowref {
 
 SourceLocation Provenance::find(std::string path) const {
@@ -49,6 +51,9 @@ double readNumber(const YamlValue& v, const std::string& path) {
   if (ec != std::errc() || end != text.data() + text.size() || text.empty())
     failAt(v.at, path + ": expected a number, got '" + s + "'");
   if (!std::isfinite(value)) failAt(v.at, path + ": the value must be a finite number");
+  // A bound on every number keeps everything computed from them finite (resource_limits.h).
+  if (!(std::fabs(value) <= kMaxSceneNumber))
+    failAt(v.at, path + ": '" + s + "' is too large; a scene's numbers lie within +-1e15");
   return value;
 }
 
@@ -119,6 +124,35 @@ glm::dvec3 readColor(const YamlValue& v, const std::string& path) {
     failAt(v.at, path + ": expected a colour: [r, g, b] or one grey value, got " +
                      (v.isList() ? std::to_string(v.items.size()) + " values" : std::string(v.kindName())));
   return readVec3(v, path);
+}
+
+glm::dvec3 readDirection(const YamlValue& v, const std::string& path, const char* what) {
+  glm::dvec3 d = readVec3(v, path);
+  if (d == glm::dvec3(0.0)) failAt(v.at, path + ": " + what + " must not be the zero vector");
+  const double largest = std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+  // Below 2^-400 the squared length (2^-800) underflows; scaling by 2^k is exact and changes no
+  // normalised result.
+  if (largest < 0x1p-400) {
+    const int exponent = std::ilogb(largest);
+    d = glm::dvec3(std::ldexp(d.x, -exponent), std::ldexp(d.y, -exponent), std::ldexp(d.z, -exponent));
+  }
+  const glm::dvec3 unit = glm::normalize(d);
+  if (!allWithin(unit, 1.0 + 1e-12) || !(std::fabs(glm::length(unit) - 1.0) < 1e-12))
+    failAt(v.at, path + ": " + what + " cannot be normalised to unit length");
+  return d;
+}
+
+bool allWithin(const glm::dvec3& v, double bound) {
+  for (int i = 0; i < 3; ++i)
+    if (!(std::fabs(v[i]) <= bound)) return false;  // NaN fails too
+  return true;
+}
+
+bool allWithin(const glm::dmat4& m, double bound) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!(std::fabs(m[c][r]) <= bound)) return false;
+  return true;
 }
 
 std::string joinNames(const std::vector<std::string_view>& names) {
