@@ -69,6 +69,7 @@ class Converter {
         break;
       case YAML::NodeType::Scalar:
         out.kind = YamlValue::Kind::Scalar;
+        countText(node.Scalar().size(), out.at);
         out.scalar = node.Scalar();
         break;
       case YAML::NodeType::Sequence:
@@ -92,6 +93,7 @@ class Converter {
     SourceLocation keyAt = map_(key.Mark());
     if (!key.IsScalar()) throw SceneError(keyAt, "a key must be a plain name, not " +
                                                      std::string(key.IsNull() ? "empty" : "a list or map"));
+    countText(key.Scalar().size(), keyAt);
     const auto [first, isNew] = seen.emplace(key.Scalar(), keyAt.line);
     if (!isNew)
       throw SceneError(keyAt, "duplicate key '" + key.Scalar() + "' (first written at line " +
@@ -103,8 +105,16 @@ class Converter {
     map.entries.push_back(std::move(entry));
   }
 
+  void countText(size_t bytes, const SourceLocation& at) {
+    textBytes_ += bytes;
+    if (textBytes_ > kYamlMaxTextBytes)
+      throw SceneError(at, "the document's text is more than " + std::to_string(kYamlMaxTextBytes) +
+                               " bytes after aliases are expanded");
+  }
+
   MarkMapper map_;
   size_t count_ = 0;
+  size_t textBytes_ = 0;
 };
 
 // Records where each document of a stream starts, and stops the parse at the first collection

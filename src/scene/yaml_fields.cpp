@@ -182,9 +182,19 @@ size_t editDistance(std::string_view a, std::string_view b) {
 }  // namespace
 
 std::string_view closestName(std::string_view word, const std::vector<std::string_view>& names) {
+  // The edit distance costs |word| * |name|: a suggestion is for a typo in a name of ordinary
+  // length, and a name of megabytes or a million long names must not make the error message take
+  // hours. The names are compared in their order until the work is spent: deterministic.
+  constexpr size_t kLongestSuggested = 256;
+  constexpr size_t kMaxWork = size_t(1) << 26;
+  if (word.size() > kLongestSuggested) return {};
   std::string_view best;
   size_t bestDistance = std::numeric_limits<size_t>::max();
+  size_t work = 0;
   for (std::string_view n : names) {
+    if (n.size() > kLongestSuggested) continue;
+    work += (word.size() + 1) * (n.size() + 1);
+    if (work > kMaxWork) break;
     size_t d = editDistance(word, n);
     if (d < bestDistance) bestDistance = d, best = n;  // first of equals wins: deterministic
   }

@@ -245,3 +245,31 @@ TEST_CASE("many materials and nodes are looked up by name correctly", "[loader][
   REQUIRE(l.lights.size() == 1);
   CHECK(l.lights[0].range == 3.0);
 }
+
+TEST_CASE("a long string repeated by aliases is rejected before it is copied", "[loader][hostile]") {
+  // 1 MB of text, 100 copies through aliases: 100 MB after expansion, more than 2^26 bytes.
+  const std::string text(1 << 20, 'x');
+  std::string yaml = "materials:\n  m: {name: &t " + text + "}\nnodes: [";
+  for (int i = 0; i < 100; ++i) yaml += std::string(i ? ", " : "") + "*t";
+  yaml += "]\n";
+  const std::string e = errorOf(yaml);
+  // At the copied value, which yaml-cpp locates at its anchor: line 2, the '&' at column 13.
+  CHECK_THAT(e, StartsWith("t.yaml:2:13: "));
+  CHECK_THAT(e, Contains("the document's text is more than 67108864 bytes after aliases are expanded"));
+}
+
+TEST_CASE("an unknown name among many long names gets its error without an edit-distance hang", "[loader][hostile]") {
+  // 2000 materials with names of 200 characters and a node naming an unknown one of 200: the
+  // suggestion search would be 2000 * 200 * 200 = 8e7 steps; it stops after its work budget and
+  // still finds a name close enough when one comes early.
+  std::string yaml = kBoxMesh + "materials:\n";
+  const std::string stem(199, 'n');
+  for (int i = 0; i < 2000; ++i) yaml += "  " + stem + std::to_string(i % 10) + std::to_string(i) + ": {}\n";
+  yaml += "nodes:\n  - {mesh: box, material: " + stem + "00x}\n";
+  const std::string e = errorOf(yaml);
+  CHECK_THAT(e, Contains("no material named"));
+  CHECK_THAT(e, Contains("did you mean '" + stem + "00'?"));
+  // A word longer than 256 characters gets no suggestion at all.
+  CHECK_THAT(errorOf(kBoxMesh + "nodes:\n  - {mesh: box, material: " + std::string(300, 'q') + "}\n"),
+             !Contains("did you mean"));
+}
