@@ -98,10 +98,10 @@ void readMeshes(const YamlValue& map, Scene& scene, const std::string& baseDir, 
   }
 }
 
-void readNodes(const YamlValue& list, Scene& scene, Provenance& where) {
+void readNodes(const YamlValue& list, Scene& scene, const ResourceLimits& limits, Provenance& where) {
   if (list.isNull()) return;
   if (!list.isList()) failAt(list.at, "nodes: expected a list of nodes, got " + std::string(list.kindName()));
-  for (Node& node : readNodeList(list, scene.roots.size(), scene, where)) scene.roots.push_back(std::move(node));
+  for (Node& node : readNodeList(list, scene.roots.size(), scene, limits, where)) scene.roots.push_back(std::move(node));
 }
 
 // Overrides of generator.* are merged into the file's generator section before it runs.
@@ -152,13 +152,16 @@ Scene buildScene(const YamlValue& root, const std::string& displayName, const st
     scene.background = readColor(*v, "background"), where.record("background", v->at);
   if (const YamlValue* v = root.find("shadow")) applyShadow(*v, scene.shadow, where);
   if (const YamlValue* v = root.find("limits")) applyLimits(*v, limits, where);
+  // limits.* overrides take effect now: reading the nodes already counts them against the budget.
+  for (const Override& o : overrides)
+    if (o.path[0].text == "limits") applyOverride(o, scene, limits, where);
   readMaterials(section("materials"), scene, where);
   readLights(section("lights"), scene, where);
   readMeshes(section("meshes"), scene, baseDir, where);
-  readNodes(section("nodes"), scene, where);
+  readNodes(section("nodes"), scene, limits, where);
 
   for (const Override& o : overrides)
-    if (o.path[0].text != "generator") applyOverride(o, scene, limits, where);
+    if (o.path[0].text != "generator" && o.path[0].text != "limits") applyOverride(o, scene, limits, where);
   validateScene(scene, limits, where);
   return scene;
 }

@@ -17,8 +17,12 @@ constexpr double kPi = 3.14159265358979323846;
 double radians(double degrees) { return degrees * (kPi / 180.0); }
 
 // Mesh and material names -> indices; the first of equal names wins, as a linear search would.
+// `instances` counts the mesh nodes against the budget as they are read: a file whose aliases
+// repeat a large mesh is rejected at the first node too many, before the rest are read (the
+// budget is checked again, authoritatively, with the world transforms in validateScene).
 struct NameIndex {
   std::unordered_map<std::string_view, int> meshes, materials;
+  ResourceBudget* instances = nullptr;
   explicit NameIndex(const Scene& scene) {
     for (size_t i = 0; i < scene.meshes.size(); ++i) meshes.emplace(scene.meshes[i]->name, static_cast<int>(i));
     for (size_t i = 0; i < scene.materials.size(); ++i) materials.emplace(scene.materials[i].name, static_cast<int>(i));
@@ -29,6 +33,8 @@ struct NameIndex {
 struct NodeDraft {
   const Scene* scene = nullptr;
   const NameIndex* index = nullptr;
+  std::string path;
+  const YamlValue* children = nullptr;
   Node node;
   std::optional<glm::dvec3> translate, scale;
   std::optional<glm::dmat4> rotate, matrix;
@@ -165,11 +171,11 @@ const std::vector<Field<NodeDraft>>& nodeFields() {
       {"shadow_proxy", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
          d.node.shadowProxy = findMesh(d, v, p);
        }},
-      {"children", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance& where) {
+      {"children", [](const YamlValue& v, NodeDraft& d, const std::string&, Provenance&) {
+         // Read after the node's own keys (readNode): a node is counted before its children.
          if (v.isNull()) return;
-         if (!v.isList()) failAt(v.at, p + ": expected a list of nodes, got " + v.kindName());
-         for (size_t i = 0; i < v.items.size(); ++i)
-           d.node.children.push_back(readNode(v.items[i], p + "." + std::to_string(i), *d.scene, *d.index, where));
+         if (!v.isList()) failAt(v.at, d.path + ".children: expected a list of nodes, got " + v.kindName());
+         d.children = &v;
        }},
   };
   return fields;
@@ -188,6 +194,26 @@ glm::dmat4 compose(const NodeDraft& d, const std::string& path) {
   return m;
 }
 
+// One mesh node's instance, as validateScene counts it: its mesh and a shadow proxy's.
+std::string countInstance(const Scene& scene, const Node& node, ResourceBudget& budget) {
+  const size_t meshCount = scene.meshes.size();
+  if (node.mesh < 0 || size_t(node.mesh) >= meshCount) return {};
+  const Mesh& mesh = *scene.meshes[size_t(node.mesh)];
+  std::uint64_t triangles = mesh.triangles.size(), vertices = mesh.positions.size();
+  if (node.castShadows && node.shadowProxy >= 0 && size_t(node.shadowProxy) < meshCount) {
+    triangles += scene.meshes[size_t(node.shadowProxy)]->triangles.size();
+    vertices += scene.meshes[size_t(node.shadowProxy)]->positions.size();
+  }
+  return budget.add(triangles, vertices);
+}
+
+// The generator's mesh nodes, counted first as validateScene does (nesting bounded by the
+// generator's code); one beyond the budget is reported there, at the generator.
+void countInstances(const Scene& scene, const Node& node, ResourceBudget& budget) {
+  (void)countInstance(scene, node, budget);
+  for (const Node& child : node.children) countInstances(scene, child, budget);
+}
+
 Node readNode(const YamlValue& map, const std::string& path, const Scene& scene, const NameIndex& index,
               Provenance& where) {
   if (!map.isMap()) failAt(map.at, path + ": expected a node (a map with name, mesh, translate, ...), got " + map.kindName());
@@ -195,8 +221,18 @@ Node readNode(const YamlValue& map, const std::string& path, const Scene& scene,
   NodeDraft d;
   d.scene = &scene;
   d.index = &index;
+  d.path = path;
   applyFields(map, path, nodeFields(), d, where);
   if (!d.nameGiven) d.node.name = d.node.mesh >= 0 ? scene.meshes[d.node.mesh]->name : "node";
+  if (d.node.mesh >= 0 && index.instances) {
+    if (const std::string exceeded = countInstance(scene, d.node, *index.instances); !exceeded.empty())
+      failAt(map.at, path + ": " + exceeded);
+  }
+  if (d.children) {
+    const std::string childPath = path + ".children.";
+    for (size_t i = 0; i < d.children->items.size(); ++i)
+      d.node.children.push_back(readNode(d.children->items[i], childPath + std::to_string(i), scene, index, where));
+  }
   d.node.local = compose(d, path);
   // Each factor is bounded (kMaxSceneNumber), so T · R · S is too; a product that is not finite
   // would make the node vanish silently.
@@ -207,8 +243,12 @@ Node readNode(const YamlValue& map, const std::string& path, const Scene& scene,
 
 }  // namespace
 
-std::vector<Node> readNodeList(const YamlValue& list, size_t firstIndex, const Scene& scene, Provenance& where) {
-  const NameIndex index(scene);
+std::vector<Node> readNodeList(const YamlValue& list, size_t firstIndex, const Scene& scene,
+                               const ResourceLimits& limits, Provenance& where) {
+  NameIndex index(scene);
+  ResourceBudget instances(limits);
+  for (const Node& root : scene.roots) countInstances(scene, root, instances);  // a generator's nodes
+  index.instances = &instances;
   std::vector<Node> nodes;
   nodes.reserve(list.items.size());
   for (size_t i = 0; i < list.items.size(); ++i)

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/resource_limits.h"
 #include "scene/scene.h"
 #include "scene/yaml_fields.h"
 
@@ -15,7 +16,11 @@ namespace shadowref {
 // materials are looked up by name in `scene`, through a hash index built once for the list (a
 // scene of n nodes and m meshes costs O(n + m), not O(n * m)). Each node's location is recorded in
 // `where` under its path, for the checks made on the finished scene (world transforms, budget).
-std::vector<Node> readNodeList(const YamlValue& list, size_t firstIndex, const Scene& scene, Provenance& where);
+// Mesh nodes are counted against the resource budget as they are read, so that a file whose
+// aliases repeat a mesh a million times is rejected at the first node too many, not after reading
+// them all.
+std::vector<Node> readNodeList(const YamlValue& list, size_t firstIndex, const Scene& scene,
+                               const ResourceLimits& limits, Provenance& where);
 
 // The transform keys alone, for tests and overrides: local = T · R · S (scale first, then rotate,
 // then translate), or `matrix`. Throws for a singular result.
