@@ -8,8 +8,28 @@ namespace shadowref {
 
 namespace {
 
+// The largest window coordinate, in pixels, a triangle may have. The clipper's guard band keeps
+// every clipped vertex within about 2^19 pixels of the viewport (guardBandFor), so this bound is
+// never reached by a finite triangle; at it, fixed-point differences stay below 2^29, their
+// products below 2^58, and the facing sum over a clipped polygon (at most 8 triangles) below 2^62:
+// no int64_t arithmetic of setup or rasterization can overflow.
+constexpr double kMaxWindowCoordinate = 1 << 20;
+
+// To 1/256 pixel, saturating: a coordinate beyond +-kMaxWindowCoordinate (or NaN, which only a
+// non-finite input makes) becomes the bound instead of an undefined double -> int64_t
+// conversion. setupTriangle then rejects the triangle.
 int64_t snap(double windowCoordinate) {
-  return int64_t(std::floor(windowCoordinate * double(kSubpixelOne) + 0.5));
+  constexpr double kLimit = kMaxWindowCoordinate * double(kSubpixelOne);
+  const double fixed = std::floor(windowCoordinate * double(kSubpixelOne) + 0.5);
+  if (fixed >= -kLimit && fixed <= kLimit) return int64_t(fixed);
+  return fixed > 0.0 ? int64_t(kLimit) : -int64_t(kLimit);
+}
+
+// Whether the vertex's window position lies within the fixed-point range (so its snapped
+// coordinates are exact, not saturated) and its depth and 1/w are finite.
+bool representable(const WindowVertex& v) {
+  return std::fabs(v.fx) <= kMaxWindowCoordinate && std::fabs(v.fy) <= kMaxWindowCoordinate && std::isfinite(v.z) &&
+         std::isfinite(v.invW);
 }
 
 // Top-left rule in a y-up window: a pixel centre exactly on an edge belongs to the triangle when
@@ -103,6 +123,9 @@ bool isCulled(Facing facing, CullMode cull) {
 
 bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
                    const RenderState& state, const DepthCodec& codec, TriangleSetup& t) {
+  // A vertex made from non-finite or out-of-range input has saturated coordinates: no pixel of
+  // such a triangle would be right, so it is dropped as a triangle without area is.
+  if (!representable(a) || !representable(b) || !representable(c)) return false;
   int64_t area2 = signedArea2(a, b, c);
   if (area2 == 0) return false;
   t.v[0] = a;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <unordered_map>
 
 #include "scene/scene_generator.h"
 #include "scene/scene_meshes.h"
@@ -16,8 +17,8 @@ namespace shadowref {
 
 namespace {
 
-const std::vector<std::string_view> kTopLevelKeys{"image",  "camera",    "ambient", "background", "lights",
-                                                  "materials", "meshes", "nodes",   "generator",  "shadow"};
+const std::vector<std::string_view> kTopLevelKeys{"image",     "camera", "ambient", "background", "lights", "materials",
+                                                  "meshes",    "nodes",  "generator", "shadow", "limits"};
 
 // Light names and material names are how a file or a -D reaches what a generator made.
 void checkName(const std::string& name, const SourceLocation& at, const std::string& path) {
@@ -30,6 +31,10 @@ void checkName(const std::string& name, const SourceLocation& at, const std::str
 void readLights(const YamlValue& list, Scene& scene, Provenance& where) {
   if (list.isNull()) return;
   if (!list.isList()) failAt(list.at, "lights: expected a list of lights, got " + std::string(list.kindName()));
+  // Name -> index, so that a file of n lights costs O(n), not O(n^2); the last of equal names
+  // wins, as the linear search it replaces did.
+  std::unordered_map<std::string, size_t> byName;
+  for (size_t i = 0; i < scene.lights.size(); ++i) byName[scene.lights[i].name] = i;
   for (const YamlValue& item : list.items) {
     if (!item.isMap()) failAt(item.at, "lights: each light is a map of keys (type, position, ...), got " +
                                            std::string(item.kindName()));
@@ -37,15 +42,16 @@ void readLights(const YamlValue& list, Scene& scene, Provenance& where) {
     if (const YamlValue* name = item.find("name")) {
       std::string text = readText(*name, "lights.name");
       checkName(text, name->at, "lights");
-      for (Light& l : scene.lights)
-        if (l.name == text) light = &l;
+      if (auto it = byName.find(text); it != byName.end()) light = &scene.lights[it->second];
     }
     if (!light) {
       scene.lights.emplace_back();
       light = &scene.lights.back();
       light->name = "light" + std::to_string(scene.lights.size() - 1);
     }
-    applyLight(item, *light, "lights." + std::to_string(light - scene.lights.data()), where);
+    const size_t index = static_cast<size_t>(light - scene.lights.data());
+    applyLight(item, *light, "lights." + std::to_string(index), where);
+    byName[light->name] = index;
   }
 }
 
@@ -54,12 +60,14 @@ void readMaterials(const YamlValue& map, Scene& scene, Provenance& where) {
   if (map.isNull()) return;
   if (!map.isMap()) failAt(map.at, "materials: expected a map of name: {ambient, diffuse, ...}, got " +
                                        std::string(map.kindName()));
+  std::unordered_map<std::string, size_t> byName;  // O(n) for n materials; the last of equal names wins
+  for (size_t i = 0; i < scene.materials.size(); ++i) byName[scene.materials[i].name] = i;
   for (const YamlEntry& e : map.entries) {
     checkName(e.key, e.keyAt, "materials");
     Material* material = nullptr;
-    for (Material& m : scene.materials)
-      if (m.name == e.key) material = &m;
+    if (auto it = byName.find(e.key); it != byName.end()) material = &scene.materials[it->second];
     if (!material) {
+      byName[e.key] = scene.materials.size();
       scene.materials.push_back(Material{});
       material = &scene.materials.back();
       material->name = e.key;
@@ -73,25 +81,27 @@ void readMeshes(const YamlValue& map, Scene& scene, const std::string& baseDir, 
   if (map.isNull()) return;
   if (!map.isMap()) failAt(map.at, "meshes: expected a map of name: source, got " + std::string(map.kindName()));
   size_t triangles = 0;
+  std::unordered_map<std::string, std::vector<size_t>> byName;  // O(n) for n meshes
+  for (size_t i = 0; i < scene.meshes.size(); ++i) byName[scene.meshes[i]->name].push_back(i);
   for (const YamlEntry& e : map.entries) {
     std::shared_ptr<Mesh> mesh = readMeshSource(e.value, e.key, "meshes." + e.key, baseDir, where);
     triangles += mesh->triangles.size();
     if (triangles > kMaxSceneFileTriangles)
       failAt(e.keyAt, "meshes: more than " + std::to_string(kMaxSceneFileTriangles) + " triangles in all, up to '" +
                           e.key + "'");
-    bool replaced = false;
-    for (auto& m : scene.meshes)
-      if (m->name == e.key) m = mesh, replaced = true;
-    if (!replaced) scene.meshes.push_back(std::move(mesh));
+    std::vector<size_t>& same = byName[e.key];
+    for (size_t i : same) scene.meshes[i] = mesh;
+    if (same.empty()) {
+      same.push_back(scene.meshes.size());
+      scene.meshes.push_back(std::move(mesh));
+    }
   }
 }
 
-void readNodes(const YamlValue& list, Scene& scene, Provenance& where) {
+void readNodes(const YamlValue& list, Scene& scene, const ResourceLimits& limits, Provenance& where) {
   if (list.isNull()) return;
   if (!list.isList()) failAt(list.at, "nodes: expected a list of nodes, got " + std::string(list.kindName()));
-  const size_t first = scene.roots.size();
-  for (size_t i = 0; i < list.items.size(); ++i)
-    scene.roots.push_back(readNode(list.items[i], "nodes." + std::to_string(first + i), scene, where));
+  for (Node& node : readNodeList(list, scene.roots.size(), scene, limits, where)) scene.roots.push_back(std::move(node));
 }
 
 // Overrides of generator.* are merged into the file's generator section before it runs.
@@ -123,6 +133,7 @@ Scene buildScene(const YamlValue& root, const std::string& displayName, const st
 
   Scene scene;
   scene.sourceFile = displayName;
+  ResourceLimits limits;
   // The generator runs first; the file's sections then change or add to what it made.
   YamlValue generator = section("generator");
   for (const Override& o : overrides) {
@@ -140,14 +151,18 @@ Scene buildScene(const YamlValue& root, const std::string& displayName, const st
   if (const YamlValue* v = root.find("background"))
     scene.background = readColor(*v, "background"), where.record("background", v->at);
   if (const YamlValue* v = root.find("shadow")) applyShadow(*v, scene.shadow, where);
+  if (const YamlValue* v = root.find("limits")) applyLimits(*v, limits, where);
+  // limits.* overrides take effect now: reading the nodes already counts them against the budget.
+  for (const Override& o : overrides)
+    if (o.path[0].text == "limits") applyOverride(o, scene, limits, where);
   readMaterials(section("materials"), scene, where);
   readLights(section("lights"), scene, where);
   readMeshes(section("meshes"), scene, baseDir, where);
-  readNodes(section("nodes"), scene, where);
+  readNodes(section("nodes"), scene, limits, where);
 
   for (const Override& o : overrides)
-    if (o.path[0].text != "generator") applyOverride(o, scene, where);
-  validateScene(scene, where);
+    if (o.path[0].text != "generator" && o.path[0].text != "limits") applyOverride(o, scene, limits, where);
+  validateScene(scene, limits, where);
   return scene;
 }
 

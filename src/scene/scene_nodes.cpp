@@ -1,6 +1,10 @@
 #include "scene/scene_nodes.h"
 
+#include "scene/resource_limits.h"
+
 #include <optional>
+#include <string_view>
+#include <unordered_map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -12,9 +16,25 @@ constexpr double kPi = 3.14159265358979323846;
 
 double radians(double degrees) { return degrees * (kPi / 180.0); }
 
+// Mesh and material names -> indices; the first of equal names wins, as a linear search would.
+// `instances` counts the mesh nodes against the budget as they are read: a file whose aliases
+// repeat a large mesh is rejected at the first node too many, before the rest are read (the
+// budget is checked again, authoritatively, with the world transforms in validateScene).
+struct NameIndex {
+  std::unordered_map<std::string_view, int> meshes, materials;
+  ResourceBudget* instances = nullptr;
+  explicit NameIndex(const Scene& scene) {
+    for (size_t i = 0; i < scene.meshes.size(); ++i) meshes.emplace(scene.meshes[i]->name, static_cast<int>(i));
+    for (size_t i = 0; i < scene.materials.size(); ++i) materials.emplace(scene.materials[i].name, static_cast<int>(i));
+  }
+};
+
 // A node as written, before its transform is composed (the keys may come in any order).
 struct NodeDraft {
   const Scene* scene = nullptr;
+  const NameIndex* index = nullptr;
+  std::string path;
+  const YamlValue* children = nullptr;
   Node node;
   std::optional<glm::dvec3> translate, scale;
   std::optional<glm::dmat4> rotate, matrix;
@@ -22,11 +42,14 @@ struct NodeDraft {
   bool nameGiven = false;
 };
 
-int findByName(const std::vector<std::string_view>& names, const YamlValue& v, const std::string& path,
-               const char* what) {
+// The index of the name `v` holds; an unknown name is an error that suggests the closest of
+// `names` (built only then).
+template <class NamesFn>
+int findByName(const std::unordered_map<std::string_view, int>& index, NamesFn allNames, const YamlValue& v,
+               const std::string& path, const char* what) {
   std::string name = readText(v, path);
-  for (size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return static_cast<int>(i);
+  if (auto it = index.find(name); it != index.end()) return it->second;
+  const std::vector<std::string_view> names = allNames();
   std::string message = path + ": no " + std::string(what) + " named '" + name + "'";
   std::string_view near = closestName(name, names);
   if (!near.empty()) message += "; did you mean '" + std::string(near) + "'?";
@@ -34,17 +57,24 @@ int findByName(const std::vector<std::string_view>& names, const YamlValue& v, c
   failAt(v.at, message);
 }
 
-int findMesh(const Scene& scene, const YamlValue& v, const std::string& path) {
-  std::vector<std::string_view> names;
-  for (const auto& m : scene.meshes) names.push_back(m->name);
-  return findByName(names, v, path, "mesh");
+int findMesh(const NodeDraft& d, const YamlValue& v, const std::string& path) {
+  return findByName(d.index->meshes, [&] {
+    std::vector<std::string_view> names;
+    for (const auto& m : d.scene->meshes) names.push_back(m->name);
+    return names;
+  }, v, path, "mesh");
 }
 
-int findMaterial(const Scene& scene, const YamlValue& v, const std::string& path) {
-  std::vector<std::string_view> names;
-  for (const Material& m : scene.materials) names.push_back(m.name);
-  return findByName(names, v, path, "material");
+int findMaterial(const NodeDraft& d, const YamlValue& v, const std::string& path) {
+  return findByName(d.index->materials, [&] {
+    std::vector<std::string_view> names;
+    for (const Material& m : d.scene->materials) names.push_back(m.name);
+    return names;
+  }, v, path, "material");
 }
+
+Node readNode(const YamlValue& map, const std::string& path, const Scene& scene, const NameIndex& index,
+              Provenance& where);
 
 // rotate: {axis: [x, y, z], angle: degrees} or {euler: [x, y, z]} in degrees, applied about the
 // fixed X axis first, then Y, then Z: R = Rz · Ry · Rx.
@@ -56,8 +86,7 @@ struct RotateDraft {
 glm::dmat4 readRotate(const YamlValue& v, const std::string& path) {
   static const std::vector<Field<RotateDraft>> fields{
       {"axis", [](const YamlValue& x, RotateDraft& r, const std::string& p, Provenance&) {
-         r.axis = readVec3(x, p);
-         if (*r.axis == glm::dvec3(0.0)) failAt(x.at, p + ": the rotation axis must not be the zero vector");
+         r.axis = readDirection(x, p, "the rotation axis");
        }},
       {"angle", [](const YamlValue& x, RotateDraft& r, const std::string& p, Provenance&) { r.angle = readNumber(x, p); }},
       {"euler", [](const YamlValue& x, RotateDraft& r, const std::string& p, Provenance&) { r.euler = readVec3(x, p); }},
@@ -121,10 +150,10 @@ const std::vector<Field<NodeDraft>>& nodeFields() {
          d.nameGiven = true;
        }},
       {"mesh", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
-         d.node.mesh = findMesh(*d.scene, v, p);
+         d.node.mesh = findMesh(d, v, p);
        }},
       {"material", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
-         d.node.material = findMaterial(*d.scene, v, p);
+         d.node.material = findMaterial(d, v, p);
        }},
       {"translate", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) { d.translate = readVec3(v, p); }},
       {"rotate", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) { d.rotate = readRotate(v, p); }},
@@ -140,13 +169,13 @@ const std::vector<Field<NodeDraft>>& nodeFields() {
          d.node.castShadows = readBool(v, p);
        }},
       {"shadow_proxy", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance&) {
-         d.node.shadowProxy = findMesh(*d.scene, v, p);
+         d.node.shadowProxy = findMesh(d, v, p);
        }},
-      {"children", [](const YamlValue& v, NodeDraft& d, const std::string& p, Provenance& where) {
+      {"children", [](const YamlValue& v, NodeDraft& d, const std::string&, Provenance&) {
+         // Read after the node's own keys (readNode): a node is counted before its children.
          if (v.isNull()) return;
-         if (!v.isList()) failAt(v.at, p + ": expected a list of nodes, got " + v.kindName());
-         for (size_t i = 0; i < v.items.size(); ++i)
-           d.node.children.push_back(readNode(v.items[i], p + "." + std::to_string(i), *d.scene, where));
+         if (!v.isList()) failAt(v.at, d.path + ".children: expected a list of nodes, got " + v.kindName());
+         d.children = &v;
        }},
   };
   return fields;
@@ -165,23 +194,75 @@ glm::dmat4 compose(const NodeDraft& d, const std::string& path) {
   return m;
 }
 
-}  // namespace
+// One mesh node's instance, as validateScene counts it: its mesh and a shadow proxy's.
+std::string countInstance(const Scene& scene, const Node& node, ResourceBudget& budget) {
+  const size_t meshCount = scene.meshes.size();
+  if (node.mesh < 0 || size_t(node.mesh) >= meshCount) return {};
+  const Mesh& mesh = *scene.meshes[size_t(node.mesh)];
+  std::uint64_t triangles = mesh.triangles.size(), vertices = mesh.positions.size();
+  if (node.castShadows && node.shadowProxy >= 0 && size_t(node.shadowProxy) < meshCount) {
+    triangles += scene.meshes[size_t(node.shadowProxy)]->triangles.size();
+    vertices += scene.meshes[size_t(node.shadowProxy)]->positions.size();
+  }
+  return budget.add(triangles, vertices);
+}
 
-Node readNode(const YamlValue& map, const std::string& path, const Scene& scene, Provenance& where) {
+// The generator's mesh nodes, counted first as validateScene does (nesting bounded by the
+// generator's code); one beyond the budget is reported there, at the generator.
+void countInstances(const Scene& scene, const Node& node, ResourceBudget& budget) {
+  (void)countInstance(scene, node, budget);
+  for (const Node& child : node.children) countInstances(scene, child, budget);
+}
+
+Node readNode(const YamlValue& map, const std::string& path, const Scene& scene, const NameIndex& index,
+              Provenance& where) {
   if (!map.isMap()) failAt(map.at, path + ": expected a node (a map with name, mesh, translate, ...), got " + map.kindName());
+  where.record(path, map.at);
   NodeDraft d;
   d.scene = &scene;
+  d.index = &index;
+  d.path = path;
   applyFields(map, path, nodeFields(), d, where);
   if (!d.nameGiven) d.node.name = d.node.mesh >= 0 ? scene.meshes[d.node.mesh]->name : "node";
+  if (d.node.mesh >= 0 && index.instances) {
+    if (const std::string exceeded = countInstance(scene, d.node, *index.instances); !exceeded.empty())
+      failAt(map.at, path + ": " + exceeded);
+  }
+  if (d.children) {
+    const std::string childPath = path + ".children.";
+    for (size_t i = 0; i < d.children->items.size(); ++i)
+      d.node.children.push_back(readNode(d.children->items[i], childPath + std::to_string(i), scene, index, where));
+  }
   d.node.local = compose(d, path);
+  // Each factor is bounded (kMaxSceneNumber), so T · R · S is too; a product that is not finite
+  // would make the node vanish silently.
+  if (!allWithin(d.node.local, kMaxWorldMagnitude))
+    failAt(map.at, path + ": the node's transform is not finite (a translation, rotation or scale out of range)");
   return std::move(d.node);
+}
+
+}  // namespace
+
+std::vector<Node> readNodeList(const YamlValue& list, size_t firstIndex, const Scene& scene,
+                               const ResourceLimits& limits, Provenance& where) {
+  NameIndex index(scene);
+  ResourceBudget instances(limits);
+  for (const Node& root : scene.roots) countInstances(scene, root, instances);  // a generator's nodes
+  index.instances = &instances;
+  std::vector<Node> nodes;
+  nodes.reserve(list.items.size());
+  for (size_t i = 0; i < list.items.size(); ++i)
+    nodes.push_back(readNode(list.items[i], "nodes." + std::to_string(firstIndex + i), scene, index, where));
+  return nodes;
 }
 
 glm::dmat4 readTransform(const YamlValue& map, const std::string& path) {
   static const Scene empty;
+  static const NameIndex noNames(empty);
   Provenance ignored{map.at};
   NodeDraft d;
   d.scene = &empty;
+  d.index = &noNames;
   std::vector<Field<NodeDraft>> transformOnly;
   for (const Field<NodeDraft>& f : nodeFields())
     if (f.key == "translate" || f.key == "rotate" || f.key == "scale" || f.key == "matrix") transformOnly.push_back(f);

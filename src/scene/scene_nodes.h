@@ -4,14 +4,23 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "scene/resource_limits.h"
 #include "scene/scene.h"
 #include "scene/yaml_fields.h"
 
 namespace shadowref {
 
-// Reads one node (and its children). Meshes and materials are looked up by name in `scene`.
-Node readNode(const YamlValue& map, const std::string& path, const Scene& scene, Provenance& where);
+// Reads a list of nodes (and their children), the first named "nodes.<firstIndex>". Meshes and
+// materials are looked up by name in `scene`, through a hash index built once for the list (a
+// scene of n nodes and m meshes costs O(n + m), not O(n * m)). Each node's location is recorded in
+// `where` under its path, for the checks made on the finished scene (world transforms, budget).
+// Mesh nodes are counted against the resource budget as they are read, so that a file whose
+// aliases repeat a mesh a million times is rejected at the first node too many, not after reading
+// them all.
+std::vector<Node> readNodeList(const YamlValue& list, size_t firstIndex, const Scene& scene,
+                               const ResourceLimits& limits, Provenance& where);
 
 // The transform keys alone, for tests and overrides: local = T · R · S (scale first, then rotate,
 // then translate), or `matrix`. Throws for a singular result.

@@ -5,13 +5,18 @@
 
 namespace shadowref {
 
+// Built from the value outwards, in a loop: the depth is the key's segment count, which
+// parseOverrides bounds, but nothing here should depend on that.
 YamlValue Override::asTree(size_t from) const {
-  if (from >= path.size()) return value;
-  YamlValue map;
-  map.kind = YamlValue::Kind::Map;
-  map.at = path[from].at;
-  map.entries.push_back(YamlEntry{path[from].text, path[from].at, asTree(from + 1)});
-  return map;
+  YamlValue tree = value;
+  for (size_t i = path.size(); i > from; --i) {
+    YamlValue map;
+    map.kind = YamlValue::Kind::Map;
+    map.at = path[i - 1].at;
+    map.entries.push_back(YamlEntry{path[i - 1].text, path[i - 1].at, std::move(tree)});
+    tree = std::move(map);
+  }
+  return tree;
 }
 
 std::vector<Override> parseOverrides(const std::vector<std::string>& texts) {
@@ -30,6 +35,10 @@ std::vector<Override> parseOverrides(const std::vector<std::string>& texts) {
       size_t end = (dot == std::string::npos || dot > equals) ? equals : dot;
       std::string segment = text.substr(start, end - start);
       if (segment.empty()) failAt(at(start), "-D " + text + ": empty name in the key");
+      // A key is a path into the scene, a few names deep; one nested deeper than any YAML value
+      // may be (kYamlMaxDepth) names nothing, and its tree would only cost stack to take apart.
+      if (o.path.size() == size_t(kYamlMaxDepth))
+        failAt(at(start), "-D key: more than " + std::to_string(kYamlMaxDepth) + " names separated by '.'");
       o.path.push_back({segment, at(start)});
       if (end == equals) break;
       start = end + 1;
@@ -41,8 +50,8 @@ std::vector<Override> parseOverrides(const std::vector<std::string>& texts) {
 }
 
 const std::vector<std::string_view>& overridableSections() {
-  static const std::vector<std::string_view> names{"image",  "camera",    "ambient", "background",
-                                                   "lights", "materials", "shadow",  "generator"};
+  static const std::vector<std::string_view> names{"image",     "camera", "ambient",   "background", "lights",
+                                                   "materials", "shadow", "generator", "limits"};
   return names;
 }
 
@@ -98,7 +107,7 @@ void requireLength(const Override& o, size_t length, const char* example) {
 
 }  // namespace
 
-void applyOverride(const Override& o, Scene& scene, Provenance& where) {
+void applyOverride(const Override& o, Scene& scene, ResourceLimits& limits, Provenance& where) {
   const std::string& section = o.path[0].text;
   if (section == "image") {
     requireLength(o, 2, "image.width");
@@ -109,6 +118,9 @@ void applyOverride(const Override& o, Scene& scene, Provenance& where) {
   } else if (section == "shadow") {
     requireLength(o, 2, "shadow.method");
     applyShadow(o.asTree(1), scene.shadow, where);
+  } else if (section == "limits") {
+    requireLength(o, 2, "limits.max_triangles");
+    applyLimits(o.asTree(1), limits, where);
   } else if (section == "ambient" || section == "background") {
     requireLength(o, 1, section == "ambient" ? "ambient=[0.1, 0.1, 0.1]" : "background=0.5");
     (section == "ambient" ? scene.ambient : scene.background) = readColor(o.value, section);

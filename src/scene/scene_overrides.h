@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/resource_limits.h"
 #include "scene/scene.h"
 #include "scene/yaml_fields.h"
 
@@ -32,9 +33,10 @@ struct Override {
 // segment, or a value that is not YAML.
 std::vector<Override> parseOverrides(const std::vector<std::string>& texts);
 
-// Applies one override (not generator.*) to the scene. Throws SceneError for an unknown path,
-// a missing light or material, or a value of the wrong type.
-void applyOverride(const Override& o, Scene& scene, Provenance& where);
+// Applies one override (not generator.*) to the scene, or to the scene's resource limits
+// (limits.*). Throws SceneError for an unknown path, a missing light or material, a key with more
+// than kYamlMaxDepth names, or a value of the wrong type.
+void applyOverride(const Override& o, Scene& scene, ResourceLimits& limits, Provenance& where);
 
 // The top-level names an override may start with.
 const std::vector<std::string_view>& overridableSections();

@@ -1,5 +1,7 @@
 #include "scene/scene_sections.h"
 
+#include <cmath>
+
 namespace shadowref {
 
 const EnumNames<LightType>& lightTypeNames() {
@@ -70,7 +72,7 @@ const std::vector<Field<Camera>>& cameraFields() {
   static const std::vector<Field<Camera>> fields{
       {"eye", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) { c.eye = readVec3(v, p); }},
       {"target", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) { c.target = readVec3(v, p); }},
-      {"up", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) { c.up = readVec3(v, p); }},
+      {"up", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) { c.up = readDirection(v, p, "the up vector"); }},
       {"fov", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) {
          c.fovYDegrees = readNumber(v, p);
          if (!(c.fovYDegrees > 0.0 && c.fovYDegrees < 180.0))
@@ -108,8 +110,7 @@ const std::vector<Field<Light>>& lightFields() {
        }},
       {"position", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) { l.position = readVec3(v, p); }},
       {"direction", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
-         l.direction = readVec3(v, p);
-         if (l.direction == glm::dvec3(0.0)) failAt(v.at, p + ": a direction must not be the zero vector");
+         l.direction = readDirection(v, p);
        }},
       {"color", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) { l.color = readColor(v, p); }},
       {"range", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
@@ -190,7 +191,31 @@ const std::vector<Field<ShadowSettings>>& shadowFields() {
   return fields;
 }
 
+// A limit of the resource budget: a whole number from 1 up to 2^40 (far beyond any machine's
+// memory: the bound only keeps the budget's sums from wrapping).
+std::uint64_t readLimit(const YamlValue& v, const std::string& path) {
+  constexpr double kMaxLimit = 1099511627776.0;  // 2^40
+  const double x = readNumber(v, path);
+  if (!(x >= 1.0 && x <= kMaxLimit) || x != std::floor(x))
+    failAt(v.at, path + ": expected a whole number from 1 to 2^40 (1099511627776), got '" + v.scalar + "'");
+  return static_cast<std::uint64_t>(x);
+}
+
+const std::vector<Field<ResourceLimits>>& limitFields() {
+  using L = ResourceLimits;
+  static const std::vector<Field<L>> fields{
+      {"max_instances", [](const YamlValue& v, L& l, const std::string& p, Provenance&) { l.maxInstances = readLimit(v, p); }},
+      {"max_triangles", [](const YamlValue& v, L& l, const std::string& p, Provenance&) { l.maxTriangles = readLimit(v, p); }},
+      {"max_vertices", [](const YamlValue& v, L& l, const std::string& p, Provenance&) { l.maxVertices = readLimit(v, p); }},
+  };
+  return fields;
+}
+
 }  // namespace
+
+void applyLimits(const YamlValue& map, ResourceLimits& limits, Provenance& where) {
+  applyFields(map, "limits", limitFields(), limits, where);
+}
 
 void applyImage(const YamlValue& map, Scene& scene, Provenance& where) {
   applyFields(map, "image", imageFields(), scene, where);

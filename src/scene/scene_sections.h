@@ -5,20 +5,18 @@
 
 #include <string>
 
+#include "scene/resource_limits.h"
 #include "scene/scene.h"
 #include "scene/yaml_fields.h"
 
 namespace shadowref {
-
-// Hard limits on the image: beyond them the buffers cannot sensibly be allocated.
-inline constexpr int kMaxImageSide = 16384;
-inline constexpr long long kMaxImagePixels = 1LL << 26;  // 8192 x 8192: ~2.5 GB with every buffer
 
 void applyImage(const YamlValue& map, Scene& scene, Provenance& where);
 void applyCamera(const YamlValue& map, Camera& camera, Provenance& where);
 void applyLight(const YamlValue& map, Light& light, const std::string& path, Provenance& where);
 void applyMaterial(const YamlValue& map, Material& material, const std::string& path, Provenance& where);
 void applyShadow(const YamlValue& map, ShadowSettings& shadow, Provenance& where);
+void applyLimits(const YamlValue& map, ResourceLimits& limits, Provenance& where);
 
 // Enum spellings, shared with describeScene so that `info` prints what a file would say.
 const EnumNames<LightType>& lightTypeNames();

@@ -43,6 +43,9 @@ struct YamlEntry {
 // expand a small file exponentially, and an alias can even refer to its own ancestor.
 inline constexpr int kYamlMaxDepth = 64;
 inline constexpr size_t kYamlMaxValues = 1'000'000;
+// The text of every scalar and key after aliases are expanded: an alias copies its text, so a
+// long string repeated by aliases could otherwise ask for terabytes.
+inline constexpr size_t kYamlMaxTextBytes = size_t(1) << 26;
 
 // Parses one YAML document. `fileName` is used in locations. Throws SceneError for syntax
 // errors (at yaml-cpp's mark), duplicate keys, non-scalar keys, more than one document, an empty

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "scene/resource_limits.h"
+
 namespace shadowref {
 
 SourceLocation Provenance::find(std::string path) const {
@@ -49,6 +51,9 @@ double readNumber(const YamlValue& v, const std::string& path) {
   if (ec != std::errc() || end != text.data() + text.size() || text.empty())
     failAt(v.at, path + ": expected a number, got '" + s + "'");
   if (!std::isfinite(value)) failAt(v.at, path + ": the value must be a finite number");
+  // A bound on every number keeps everything computed from them finite (resource_limits.h).
+  if (!(std::fabs(value) <= kMaxSceneNumber))
+    failAt(v.at, path + ": '" + s + "' is too large; a scene's numbers lie within +-1e15");
   return value;
 }
 
@@ -121,6 +126,35 @@ glm::dvec3 readColor(const YamlValue& v, const std::string& path) {
   return readVec3(v, path);
 }
 
+glm::dvec3 readDirection(const YamlValue& v, const std::string& path, const char* what) {
+  glm::dvec3 d = readVec3(v, path);
+  if (d == glm::dvec3(0.0)) failAt(v.at, path + ": " + what + " must not be the zero vector");
+  const double largest = std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+  // Below 2^-400 the squared length (2^-800) underflows; scaling by 2^k is exact and changes no
+  // normalised result.
+  if (largest < 0x1p-400) {
+    const int exponent = std::ilogb(largest);
+    d = glm::dvec3(std::ldexp(d.x, -exponent), std::ldexp(d.y, -exponent), std::ldexp(d.z, -exponent));
+  }
+  const glm::dvec3 unit = glm::normalize(d);
+  if (!allWithin(unit, 1.0 + 1e-12) || !(std::fabs(glm::length(unit) - 1.0) < 1e-12))
+    failAt(v.at, path + ": " + what + " cannot be normalised to unit length");
+  return d;
+}
+
+bool allWithin(const glm::dvec3& v, double bound) {
+  for (int i = 0; i < 3; ++i)
+    if (!(std::fabs(v[i]) <= bound)) return false;  // NaN fails too
+  return true;
+}
+
+bool allWithin(const glm::dmat4& m, double bound) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!(std::fabs(m[c][r]) <= bound)) return false;
+  return true;
+}
+
 std::string joinNames(const std::vector<std::string_view>& names) {
   std::string out;
   for (size_t i = 0; i < names.size(); ++i) {
@@ -148,9 +182,19 @@ size_t editDistance(std::string_view a, std::string_view b) {
 }  // namespace
 
 std::string_view closestName(std::string_view word, const std::vector<std::string_view>& names) {
+  // The edit distance costs |word| * |name|: a suggestion is for a typo in a name of ordinary
+  // length, and a name of megabytes or a million long names must not make the error message take
+  // hours. The names are compared in their order until the work is spent: deterministic.
+  constexpr size_t kLongestSuggested = 256;
+  constexpr size_t kMaxWork = size_t(1) << 26;
+  if (word.size() > kLongestSuggested) return {};
   std::string_view best;
   size_t bestDistance = std::numeric_limits<size_t>::max();
+  size_t work = 0;
   for (std::string_view n : names) {
+    if (n.size() > kLongestSuggested) continue;
+    work += (word.size() + 1) * (n.size() + 1);
+    if (work > kMaxWork) break;
     size_t d = editDistance(word, n);
     if (d < bestDistance) bestDistance = d, best = n;  // first of equals wins: deterministic
   }

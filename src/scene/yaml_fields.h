@@ -34,7 +34,8 @@ class Provenance {
 
 [[noreturn]] void failAt(const SourceLocation& at, const std::string& message);
 
-double readNumber(const YamlValue& v, const std::string& path);  // finite; no NaN, no Inf
+// Finite (no NaN, no Inf) and of magnitude at most kMaxSceneNumber (resource_limits.h).
+double readNumber(const YamlValue& v, const std::string& path);
 double readNumberInRange(const YamlValue& v, const std::string& path, double min, double max);
 double readPositive(const YamlValue& v, const std::string& path);  // > 0, finite
 int readInt(const YamlValue& v, const std::string& path, int min, int max);
@@ -43,6 +44,15 @@ std::string readText(const YamlValue& v, const std::string& path);  // a scalar,
 glm::dvec3 readVec3(const YamlValue& v, const std::string& path);   // [x, y, z]
 glm::dvec2 readVec2(const YamlValue& v, const std::string& path);   // [x, y]
 glm::dvec3 readColor(const YamlValue& v, const std::string& path);  // [r, g, b] or one grey value
+// A direction [x, y, z]: not the zero vector (`what` names it in the message: "a direction",
+// "the rotation axis"). Components so small that the squared length underflows ([1e-320, 0, 0])
+// are scaled by a power of two, exactly, into the normal range, so that every later
+// glm::normalize of it is finite and a direction in the usual range keeps its bits.
+glm::dvec3 readDirection(const YamlValue& v, const std::string& path, const char* what = "a direction");
+
+// True when every component (every entry) is finite and of magnitude at most `bound`.
+bool allWithin(const glm::dvec3& v, double bound);
+bool allWithin(const glm::dmat4& m, double bound);
 
 template <class E>
 using EnumNames = std::vector<std::pair<std::string_view, E>>;

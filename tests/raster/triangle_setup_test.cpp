@@ -1,6 +1,8 @@
 // Triangle setup: facing and culling, and the GL 1.1 polygon offset computed from the snapped
 // window-space triangle.
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -279,4 +281,41 @@ TEST_CASE("edgeAt is the edge function of the vertices at the pixel centre, for 
     ++checked;
   }
   CHECK(checked > 1900);
+}
+
+TEST_CASE("window coordinates beyond the fixed-point range saturate and their triangle is rejected", "[raster][setup]") {
+  // A non-finite or huge clip position used to reach a double -> int64_t conversion whose result
+  // is undefined. Now snap saturates at +-2^20 pixels (2^28 in 1/256 pixel) and set-up rejects
+  // the triangle; the guard band keeps every finite clipped vertex far inside that bound.
+  Framebuffer fb(64, 64);
+  RenderState state;
+  state.viewport = Viewport{0, 0, 64, 64, 0.0, 1.0};
+  auto vertex = [](double x, double y) {
+    ClipVertex v;
+    v.position = glm::dvec4(x, y, 0.0, 1.0);
+    return v;
+  };
+  const ClipVertex a = vertex(-0.5, -0.5), b = vertex(0.5, -0.5), c = vertex(0.0, 0.5);
+  const WindowVertex wa = toWindow(a, state.viewport), wb = toWindow(b, state.viewport);
+  TriangleSetup t;
+  CHECK(setupTriangle(wa, wb, toWindow(c, state.viewport), FrontFacing, state, fb.depthCodec(), t));
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  for (const double x : {nan, inf, -inf, 1e300, -1e300, 1e7}) {
+    CAPTURE(x);
+    const ClipVertex bad = vertex(x, 0.25);
+    const WindowVertex w = toWindow(bad, state.viewport);
+    CHECK(std::llabs(w.x) == (int64_t(1) << 28));
+    CHECK(w.y == 40 * 256);  // y_ndc 0.25 on 64 pixels: (0.25 + 1) * 32 = 40, exact
+    CHECK_FALSE(setupTriangle(wa, wb, w, FrontFacing, state, fb.depthCodec(), t));
+  }
+  // Through the renderer: a triangle with a NaN vertex covers nothing, and nothing is undefined.
+  Framebuffer counted(8, 8);
+  RenderState s = coverageCountingState(counted);
+  std::vector<ClipVertex> v = windowTriangles(s.viewport, {{1, 1, 0.5}, {7, 1, 0.5}, {1, 7, 0.5}});
+  v[2].position.x = nan;
+  Renderer r(counted);
+  draw(r, s, v);
+  int covered = 0;
+  for (uint8_t cell : counted.stencil()) covered += cell;
+  CHECK(covered == 0);
 }
