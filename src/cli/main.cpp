@@ -7,12 +7,15 @@
 #include "cli/compare_command.h"
 #include "cli/render_command.h"
 #include "cli/scene_commands.h"
+#include "cli/version_info.h"
 
 int main(int argc, char** argv) {
   using namespace shadowref::cli;
   CLI::App app{"shadowref: a deterministic software rasterizer with colour, depth, stencil and accumulation\n"
                "buffers, on which stencil shadow volumes and shadow maps run exactly as their sources describe."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", versionText(),
+                       "Print the version, git revision, vector level and compiler of this build and exit");
   RenderArgs render;
   SceneArgs check, info;
   CompareArgs compare;
@@ -28,6 +31,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/render_metadata.h"
 #include "image/image_writer.h"
 #include "image/stencil_view.h"
 #include "shadow/draw_tag.h"
@@ -69,12 +70,13 @@ bool wants(const std::vector<std::string>& dumps, const char* what) {
   return std::find(dumps.begin(), dumps.end(), what) != dumps.end();
 }
 
-void writeOutput(const FrameResult& frame, const std::string& out, const ExrExtras& extras) {
+void writeOutput(const FrameResult& frame, const std::string& out, const ExrExtras& extras,
+                 const OutputMetadata& metadata) {
   ensureParentDirectory(out);
   std::string ext = std::filesystem::path(out).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".exr") writeExr(frame.framebuffer, out, extras);
-  else writeImage(frame.framebuffer, out);
+  if (ext == ".exr") writeExr(frame.framebuffer, out, extras, metadata);
+  else writeImage(frame.framebuffer, out, metadata);
 }
 
 void printStats(const FrameResult& frame) {
@@ -158,6 +160,12 @@ int runRender(const RenderArgs& args) {
   if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
   std::vector<std::string> passFiles;
   try {
+    const OutputMetadata metadata = renderMetadata(args, *scene, options);
+    const auto showing = [&](std::string content) {
+      OutputMetadata m = metadata;
+      m.content = std::move(content);
+      return m;
+    };
     if (dumpPasses) {
       options.onPass = [&](const std::string& pass, const Framebuffer& fb) {
         const std::string path = siblingPath(outputs.front(), "pass-" + pass);
@@ -166,9 +174,9 @@ int runRender(const RenderArgs& args) {
         if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
           StencilViewOptions view;
           view.signedCounts = true;
-          writeStencilPng(fb, path, view);
+          writeStencilPng(fb, path, view, showing("pass " + pass));
         } else if (fb.hasColor()) {
-          writePng(fb, path);
+          writePng(fb, path, false, showing("pass " + pass));
         } else {
           return;
         }
@@ -178,7 +186,7 @@ int runRender(const RenderArgs& args) {
     const FrameResult frame = renderFrame(*scene, options);
     const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
     for (const std::string& out : outputs) {
-      writeOutput(frame, out, extras);
+      writeOutput(frame, out, extras, showing("frame"));
       if (!args.quiet) std::cerr << "wrote " << out << '\n';
     }
     if (wants(args.dumps, "stencil")) {
@@ -186,7 +194,8 @@ int runRender(const RenderArgs& args) {
       view.signedCounts = true;  // wrapping ops store -1 as 255
       for (size_t i = 0; i < frame.stencilPerLight.size(); ++i) {
         const std::string path = siblingPath(outputs.front(), "stencil-" + frame.stencilLightNames[i]);
-        writeStencilPng(frame.stencilPerLight[i], scene->width, scene->height, path, view);
+        writeStencilPng(frame.stencilPerLight[i], scene->width, scene->height, path, view,
+                        showing("stencil " + frame.stencilLightNames[i]));
         passFiles.push_back(path);
       }
       if (frame.stencilPerLight.empty() && !args.quiet)
@@ -196,19 +205,19 @@ int runRender(const RenderArgs& args) {
       std::vector<float> depth(frame.framebuffer.depthCodes().size());
       for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(frame.framebuffer.depthCodec().decode(frame.framebuffer.depthCodes()[i]));
       const std::string path = siblingPath(outputs.front(), "depth");
-      writeGreyPng(depth, scene->width, scene->height, path, 0.0f, 1.0f);
+      writeGreyPng(depth, scene->width, scene->height, path, 0.0f, 1.0f, showing("depth"));
       passFiles.push_back(path);
     }
     for (size_t i = 0; i < frame.shadowMaps.size(); ++i) {
       const DepthTexture& map = frame.shadowMaps[i];
       const std::string png = siblingPath(outputs.front(), "shadowmap-" + frame.shadowMapNames[i]);
       const std::vector<float> depth = map.values();
-      writeGreyPng(depth, map.width, map.height, png, 0.0f, 1.0f);
+      writeGreyPng(depth, map.width, map.height, png, 0.0f, 1.0f, showing("shadow map " + frame.shadowMapNames[i]));
       Framebuffer holder(map.width, map.height);
       ExrExtras z;
       z.channels.push_back(NamedChannel::floatChannel("Z", depth));
       std::string exr = png.substr(0, png.size() - 4) + ".exr";
-      writeExr(holder, exr, z);
+      writeExr(holder, exr, z, showing("shadow map " + frame.shadowMapNames[i]));
       passFiles.push_back(png);
       passFiles.push_back(exr);
     }

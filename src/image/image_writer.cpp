@@ -31,6 +31,12 @@ void writeWithOiio(const std::string& tempPath, const char* formatName, const OI
   if (!out->close()) throw std::runtime_error(out->geterror());
 }
 
+// Provenance as string attributes: OpenImageIO writes them as EXR header attributes and as PNG
+// tEXt chunks (ImageDescription under PNG's keyword "Description").
+void addMetadata(OIIO::ImageSpec& spec, const OutputMetadata& metadata) {
+  for (const auto& [name, value] : metadataAttributes(metadata)) spec.attribute(name, value);
+}
+
 // The image row (0 = top) that holds framebuffer row y (0 = bottom).
 int fileRow(int y, int height) { return height - 1 - y; }
 
@@ -60,15 +66,16 @@ void checkImage8(const Image8& image) {
 
 }  // namespace
 
-void writePng8(const Image8& image, const std::string& path) {
+void writePng8(const Image8& image, const std::string& path, const OutputMetadata& metadata) {
   checkImage8(image);
   OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
+  addMetadata(spec, metadata);
   writeFileAtomically(path, [&](const std::string& temp) {
     writeWithOiio(temp, "png", spec, OIIO::TypeDesc::UINT8, image.pixels.data());
   });
 }
 
-void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha) {
+void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha, const OutputMetadata& metadata) {
   if (!fb.hasColor()) throw std::invalid_argument("cannot write '" + path + "': the framebuffer has no colour buffer");
   Image8 image;
   image.width = fb.width();
@@ -82,7 +89,7 @@ void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha) {
       for (int k = 0; k < image.channels; ++k) image.pixels[out + size_t(k)] = toByte(double(c[k]));
     }
   }
-  writePng8(image, path);
+  writePng8(image, path, metadata);
 }
 
 NamedChannel NamedChannel::floatChannel(std::string name, std::vector<float> values) {
@@ -144,7 +151,7 @@ std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& ex
   return channels;
 }
 
-void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras) {
+void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras, const OutputMetadata& metadata) {
   const std::vector<NamedChannel> channels = exrChannels(fb, extras);
   if (channels.empty())
     throw std::invalid_argument("cannot write '" + path + "': the framebuffer has no buffers to write");
@@ -167,6 +174,7 @@ void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& e
   // An empty DateTime keeps OpenImageIO from stamping the current time into the header, so the same
   // framebuffer always gives the same bytes (goldens diff cleanly).
   spec.attribute("DateTime", "");
+  addMetadata(spec, metadata);
 
   // Every channel is 4 bytes wide, so a pixel is nc words; floats travel as their bit patterns.
   std::vector<uint32_t> words(size_t(w) * size_t(h) * size_t(nc));
@@ -186,10 +194,10 @@ void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& e
   });
 }
 
-void writeImage(const Framebuffer& fb, const std::string& path) {
+void writeImage(const Framebuffer& fb, const std::string& path, const OutputMetadata& metadata) {
   const std::string ext = lowerExtension(path);
-  if (ext == ".png") return writePng(fb, path);
-  if (ext == ".exr") return writeExr(fb, path);
+  if (ext == ".png") return writePng(fb, path, false, metadata);
+  if (ext == ".exr") return writeExr(fb, path, {}, metadata);
   throw std::invalid_argument("cannot write '" + path + "': unknown image type " +
                               (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
                               "; use .png (8-bit colour) or .exr (colour, Z, stencil)");
@@ -216,8 +224,8 @@ Image8 greyImage(const std::vector<float>& values, int width, int height, float 
 }
 
 void writeGreyPng(const std::vector<float>& values, int width, int height, const std::string& path,
-                  float lo, float hi) {
-  writePng8(greyImage(values, width, height, lo, hi), path);
+                  float lo, float hi, const OutputMetadata& metadata) {
+  writePng8(greyImage(values, width, height, lo, hi), path, metadata);
 }
 
 }  // namespace shadowref

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "image/output_metadata.h"
 #include "raster/framebuffer.h"
 
 namespace shadowref {
@@ -25,15 +26,19 @@ struct Image8 {
   std::vector<uint8_t> pixels;
 };
 
+// Every writer takes the file's provenance last (output_metadata.h): its attributes go into the
+// EXR header or PNG tEXt chunks; the default, empty, writes none.
+
 // Writes an Image8 as PNG (any path; the format is PNG whatever the extension).
-void writePng8(const Image8& image, const std::string& path);
+void writePng8(const Image8& image, const std::string& path, const OutputMetadata& metadata = {});
 
 // 8-bit colour: each channel c becomes round(c * 255) after clamping to [0, 1], computed in double
 // so the product is exact and halves round up (0.5 -> 128). No transfer function is applied: the
 // bytes are what an 8-bit GL colour buffer would hold. RGB by default, because a scene cleared with
 // alpha 0 would otherwise open as a transparent picture; withAlpha adds A.
 // Requires the colour buffer.
-void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha = false);
+void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha = false,
+              const OutputMetadata& metadata = {});
 
 // One extra EXR channel: 4-byte float or 32-bit unsigned values, width * height of them in
 // FRAMEBUFFER order (index y * width + x, row 0 at the bottom), flipped on writing like the
@@ -72,17 +77,18 @@ std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& ex
 // Writes exrChannels(fb, extras) as a ZIP-compressed (lossless) scanline OpenEXR file with
 // per-channel formats and no time stamp: the same framebuffer gives the same bytes.
 // A framebuffer with no buffers and no extras is an error.
-void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras = {});
+void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras = {},
+              const OutputMetadata& metadata = {});
 
 // Chooses by extension, case-insensitive: ".png" -> writePng, ".exr" -> writeExr. Any other
 // extension throws std::invalid_argument naming the supported ones.
-void writeImage(const Framebuffer& fb, const std::string& path);
+void writeImage(const Framebuffer& fb, const std::string& path, const OutputMetadata& metadata = {});
 
 // A grey 8-bit PNG of width * height values (depth buffers, shadow maps) in FRAMEBUFFER order
 // (row 0 at the bottom): lo maps to black, hi to white, round((v - lo) / (hi - lo) * 255) after
 // clamping; NaN becomes black. Requires lo < hi.
 void writeGreyPng(const std::vector<float>& values, int width, int height, const std::string& path,
-                  float lo, float hi);
+                  float lo, float hi, const OutputMetadata& metadata = {});
 
 // The same mapping without writing: the 8-bit grey picture, top row first.
 Image8 greyImage(const std::vector<float>& values, int width, int height, float lo, float hi);

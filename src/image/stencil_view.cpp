@@ -159,12 +159,13 @@ Image8 stencilFalseColour(const Framebuffer& fb, const StencilViewOptions& optio
 }
 
 void writeStencilPng(std::span<const uint8_t> stencil, int width, int height, const std::string& path,
-                     const StencilViewOptions& options) {
-  writePng8(stencilFalseColour(stencil, width, height, options), path);
+                     const StencilViewOptions& options, const OutputMetadata& metadata) {
+  writePng8(stencilFalseColour(stencil, width, height, options), path, metadata);
 }
 
-void writeStencilPng(const Framebuffer& fb, const std::string& path, const StencilViewOptions& options) {
-  writePng8(stencilFalseColour(fb, options), path);
+void writeStencilPng(const Framebuffer& fb, const std::string& path, const StencilViewOptions& options,
+                     const OutputMetadata& metadata) {
+  writePng8(stencilFalseColour(fb, options), path, metadata);
 }
 
 namespace {

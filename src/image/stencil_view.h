@@ -38,9 +38,11 @@ Image8 stencilFalseColour(std::span<const uint8_t> stencil, int width, int heigh
                           const StencilViewOptions& options = {});
 Image8 stencilFalseColour(const Framebuffer& fb, const StencilViewOptions& options = {});
 
+// The picture as a PNG, with the file's provenance (see image_writer.h).
 void writeStencilPng(std::span<const uint8_t> stencil, int width, int height, const std::string& path,
-                     const StencilViewOptions& options = {});
-void writeStencilPng(const Framebuffer& fb, const std::string& path, const StencilViewOptions& options = {});
+                     const StencilViewOptions& options = {}, const OutputMetadata& metadata = {});
+void writeStencilPng(const Framebuffer& fb, const std::string& path, const StencilViewOptions& options = {},
+                     const OutputMetadata& metadata = {});
 
 // The counts of the region x..x+w-1, y..y+h-1 (framebuffer coordinates, y = row with row 0 at the
 // BOTTOM) as text: a title line, a header of x labels, then one line per row, TOP row first, each

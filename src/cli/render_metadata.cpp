@@ -1,0 +1,22 @@
+#include "cli/render_metadata.h"
+
+#include "cli/version_info.h"
+#include "raster/thread_pool.h"
+#include "shadow/shadow_method.h"
+
+namespace shadowref::cli {
+
+OutputMetadata renderMetadata(const RenderArgs& args, const Scene& scene, const FrameOptions& options) {
+  OutputMetadata m;
+  m.software = softwareName();
+  m.method = name(options.method.value_or(scene.shadow.method));
+  // The file as named on the command line: the same command gives the same metadata anywhere.
+  m.scene = args.scene.scene.empty() ? scene.sourceFile : args.scene.scene;
+  if (!args.scene.scene.empty()) m.sceneSha1 = sha1OfFile(args.scene.scene);
+  m.overrides = args.scene.overrides;
+  m.threads = options.threads > 0 ? options.threads : defaultThreadCount();
+  m.pipeline = "fast";
+  return m;
+}
+
+}  // namespace shadowref::cli
