@@ -467,7 +467,7 @@ struct Measured {
 struct Settings {
   int rounds = 5;
   int frames = 5;          // per run; softpipe gets fewer (it takes 10x as long)
-  std::string csvPath = std::string(SHADOWREF_SOURCE_DIR) + "/bench/results/vs-mesa.csv";
+  std::string csvPath = "vs-mesa.csv";  // in the working directory; the script passes --csv
   bool scaling = true;
   bool quick = false;
   bool agreement = false;  // --agreement: the agreement table only, no timing
@@ -1163,7 +1163,7 @@ int runDriver(const Settings& s) {
 }
 
 // --tally: the tables of targets of runs saved before (each the whole output of a run, as
-// scripts/bench-vs-mesa.sh writes bench/results/vs-mesa.txt), figure by figure over the runs.
+// scripts/bench-vs-mesa.sh writes build/bench-results/vs-mesa.txt), figure by figure over the runs.
 int tallyRuns(const std::vector<std::string>& files) {
   if (files.empty()) throw std::runtime_error("--tally needs the saved output of at least one run");
   TargetTally tally;

@@ -16,7 +16,7 @@ done
 table=$(mktemp)
 trap 'rm -f "$rows" "$table"' EXIT
 {
-  echo "| case | driver | pixels | edge pixels | stencil equal | stencil diff on / off edge | max depth diff / allowed (24-bit units) | max colour diff / allowed (1/255) | issue expectation | note |"
+  echo "| case | driver | pixels | edge pixels | stencil equal | stencil diff on / off edge | max depth diff / allowed (24-bit units) | max colour diff / allowed (1/255) | expectation | note |"
   echo "|---|---|---|---|---|---|---|---|---|---|"
   sort -s -t'|' -k2,2 "$rows"
 } >"$table"

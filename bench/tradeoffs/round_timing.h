@@ -1,7 +1,7 @@
 // The trade-off bench's times over rounds. This machine's host runs at two speeds about 1.5×
-// apart and switches between them within minutes (docs/performance.md); one probe per
+// apart and switches between them within minutes; one probe per
 // configuration then catches some at the one speed and some at the other (a run at d63f7a0 timed
-// 100 houses at 11.7 ms and 64 at 15.4: performance-history.md, round 24). Every configuration
+// 100 houses at 11.7 ms and 64 at 15.4). Every configuration
 // is therefore probed once per round, each round starting a step further down the list, so that a
 // configuration's probes lie spread over the whole run, and its time is the median of its rounds'
 // medians. Not the fastest round: two runs minutes apart at 380cb3d, scaled to agree on the median
