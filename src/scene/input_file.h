@@ -13,6 +13,10 @@ namespace shadowref {
 // more than the scene's triangle budget can use.
 inline constexpr std::uint64_t kMaxInputFileBytes = std::uint64_t{256} << 20;
 
+// A scene file is hand-written text: 64 MiB is far beyond any real one, and bounds what the YAML
+// parser is given before it builds a node tree several times the text's size.
+inline constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t{64} << 20;
+
 // The size of `path` in bytes after checking that it exists, is a regular file and has at most
 // `maxBytes` bytes. Throws SceneError at `path` (no line) naming `what` ("mesh file", "buffer").
 std::uint64_t checkInputFile(const std::string& path, const std::string& what,

@@ -1,5 +1,7 @@
 #include "scene/scene_loader.h"
 
+#include "scene/input_file.h"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -176,13 +178,11 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) throw SceneError(SourceLocation{path, 0, 0}, "scene file does not exist");
-  if (!fs::is_regular_file(path, ec)) throw SceneError(SourceLocation{path, 0, 0}, "not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(SourceLocation{path, 0, 0}, "cannot read the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // The same checks as every side file: a regular file of bounded size, its size known first, so
+  // a FIFO, a device or a huge file is refused before a byte is read.
+  const std::string text = readInputFile(path, "scene file", kMaxSceneFileBytes);
   fs::path parent = fs::path(path).parent_path();
-  return buildScene(parseYaml(text.str(), path), path, parent.empty() ? "." : parent.string(), options);
+  return buildScene(parseYaml(text, path), path, parent.empty() ? "." : parent.string(), options);
 }
 
 }  // namespace shadowref

@@ -3,6 +3,13 @@
 #include <catch2/catch.hpp>
 
 #include "scene/scene_loader.h"
+#include "scene/input_file.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 using namespace shadowref;
 using Catch::Matchers::Contains;
@@ -291,5 +298,23 @@ TEST_CASE("tessellation that would not fit in memory is an error at the primitiv
 
 TEST_CASE("a scene file that does not exist or is a folder is an error naming the path", "[loader]") {
   CHECK_THAT(fileErrorOf("no_such_scene.yaml"), StartsWith(kData + "no_such_scene.yaml: scene file does not exist"));
-  CHECK_THAT(fileErrorOf(""), StartsWith(kData + ": not a regular file"));
+  CHECK_THAT(fileErrorOf(""), StartsWith(kData + ": scene file is not a regular file"));
+}
+
+TEST_CASE("a scene file that is a FIFO or larger than the limit is refused before it is read", "[loader]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("shadowref_scene_file_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path fifo = dir / "fifo.yaml";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  // Reading a FIFO with no writer would block for ever; it must be refused at once.
+  CHECK_THROWS_WITH(loadScene(fifo.string()), Catch::Matchers::Contains("scene file is not a regular file"));
+  // A sparse file one byte over the limit: its size is known before anything is read.
+  const fs::path huge = dir / "huge.yaml";
+  { std::ofstream(huge) << "camera: {}\n"; }
+  fs::resize_file(huge, kMaxSceneFileBytes + 1);
+  CHECK_THROWS_WITH(loadScene(huge.string()),
+                    Catch::Matchers::Contains("scene file has " + std::to_string(kMaxSceneFileBytes + 1) +
+                                              " bytes, more than the limit of " + std::to_string(kMaxSceneFileBytes)));
+  fs::remove_all(dir);
 }
