@@ -87,8 +87,8 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
   CLI::App* bench = app.add_subcommand("bench", "Render a scene several times; print the median time per frame and pass, and with threads the time in and outside the pool's runs");
   bench->add_option("scene", args.scene.scene, "Scene file (YAML); omitted: the built-in room");
   bench->add_option("--method", args.method, "Shadow method: " + shadowMethodNames());
-  bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(CLI::Range(1, 10000));
-  bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 256));
+  bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(wholeNumberIn(1, 10000));
+  bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(wholeNumberIn(0, 256));
   bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400");
   CLI::Option* csv =
       bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");

@@ -1,5 +1,8 @@
 #include "cli/cli_common.h"
 
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <iostream>
 
@@ -39,6 +42,65 @@ bool parseMethodOrReport(const std::string& text, std::optional<ShadowMethod>& m
 std::string defaultOutputPath(const std::string& scenePath, const std::string& extension) {
   const std::string stem = scenePath.empty() ? "default" : std::filesystem::path(scenePath).stem().string();
   return "out/" + stem + extension;
+}
+
+namespace {
+
+// The Levenshtein distance: how many single-letter edits turn a into b.
+size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+bool reportUnknownSubcommand(const CLI::App& app, int argc, const char* const* argv) {
+  if (argc < 2 || argv[1][0] == '-' || argv[1][0] == '\0') return false;
+  const std::string word = argv[1];
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+  if (std::find(names.begin(), names.end(), word) != names.end()) return false;
+  std::string best;
+  size_t bestDistance = 3;  // suggest only a name within two edits
+  for (const std::string& name : names) {
+    const size_t d = editDistance(word, name);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = name;
+    }
+  }
+  std::cerr << "unknown subcommand '" << word << "'";
+  if (!best.empty()) std::cerr << " (did you mean '" << best << "'?)";
+  std::cerr << "; the subcommands are";
+  for (const std::string& name : names) std::cerr << ' ' << name;
+  std::cerr << "\n";
+  return true;
+}
+
+CLI::Validator wholeNumberIn(int min, int max) {
+  const std::string range = std::to_string(min) + " to " + std::to_string(max);
+  return CLI::Validator(
+      [min, max, range](std::string& text) -> std::string {
+        long long value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, ec] = std::from_chars(text.data(), end, value);
+        if (text.empty() || (ec != std::errc() && ec != std::errc::result_out_of_range) || stop != end)
+          return "'" + text + "' is not a whole number (allowed: " + range + ")";
+        if (ec == std::errc::result_out_of_range || value < min || value > max)
+          return text + " is outside the allowed range " + range;
+        return "";
+      },
+      "INT in " + range);
 }
 
 void ensureParentDirectory(const std::string& path) {

@@ -7,6 +7,11 @@
 
 #include "scene/scene.h"
 
+namespace CLI {
+class App;
+class Validator;
+}
+
 namespace shadowref::cli {
 
 // SPEC.md §5: 0 success, 1 a failed render or comparison, 2 bad usage or bad input.
@@ -26,6 +31,14 @@ bool parseMethodOrReport(const std::string& text, std::optional<ShadowMethod>& m
 
 // "out/room.png" for "scenes/room.yaml", "out/default.png" for the built-in scene.
 std::string defaultOutputPath(const std::string& scenePath, const std::string& extension);
+
+// When argv[1] is a word that names no subcommand of app, prints "unknown subcommand 'rendr' (did
+// you mean 'render'?)" and returns true: CLI11 would only say that a subcommand is required.
+bool reportUnknownSubcommand(const CLI::App& app, int argc, const char* const* argv);
+
+// A check for an integer flag that tells "abc" (not a whole number) from "-1" (outside min to max,
+// both allowed); CLI::Range says "not in range" for both.
+CLI::Validator wholeNumberIn(int min, int max);
 
 // Creates the parent folders of `path`.
 void ensureParentDirectory(const std::string& path);

@@ -8,6 +8,7 @@
 #include "cli/render_command.h"
 #include "cli/scene_commands.h"
 #include "cli/version_info.h"
+#include "image/atomic_write.h"
 
 int main(int argc, char** argv) {
   using namespace shadowref::cli;
@@ -26,6 +27,9 @@ int main(int argc, char** argv) {
   addCompareCommand(app, compare);
   addBenchCommand(app, bench);
   app.footer("Exit status: 0 success, 1 a failed render or comparison, 2 bad usage or bad input.");
+  // Ctrl-C or kill during a write removes the temporary file (the target is never damaged anyway).
+  shadowref::removeTempFilesOnSignals();
+  if (reportUnknownSubcommand(app, argc, argv)) return kBadInput;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

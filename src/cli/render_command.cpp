@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -11,9 +12,11 @@
 #include "cli/render_metadata.h"
 #include "image/image_writer.h"
 #include "image/stencil_view.h"
+#include "scene/checked_arithmetic.h"
 #include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/shadow_method.h"
+#include "shadow/soft_lights.h"
 
 namespace shadowref::cli {
 
@@ -54,17 +57,38 @@ std::string siblingPath(const std::string& output, const std::string& suffix) {
   return (p.parent_path() / (p.stem().string() + "." + suffix + ".png")).string();
 }
 
-bool parseInts(const std::string& text, std::vector<int>& values, size_t count) {
+bool parseInts(const std::string& text, std::vector<int64_t>& values, size_t count) {
   values.clear();
   std::istringstream in(text);
   for (size_t i = 0; i < count; ++i) {
-    int v = 0;
+    int64_t v = 0;
     if (!(in >> v)) return false;
     values.push_back(v);
     if (i + 1 < count && in.get() != ',') return false;
   }
   return in.peek() == EOF;
 }
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return text;
+}
+
+// True when a and b name the same file: the same inode if both exist, else the same normalised path.
+bool sameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec))
+    return std::filesystem::equivalent(a, b, ec);
+  const std::filesystem::path ca = std::filesystem::weakly_canonical(a, ec);
+  if (ec) return false;
+  const std::filesystem::path cb = std::filesystem::weakly_canonical(b, ec);
+  return !ec && ca == cb;
+}
+
+// The per-light stencil counts a render may keep for the stencil.L<i> channels of an EXR: each is a
+// byte while rendering and 4 bytes twice while the EXR is written, so 2^27 of them take about
+// 1.2 GiB (e.g. 8 lights at 4096 x 4096, or 2 at 8192 x 8192).
+constexpr uint64_t kMaxKeptStencilCounts = uint64_t(1) << 27;
 
 bool wants(const std::vector<std::string>& dumps, const char* what) {
   return std::find(dumps.begin(), dumps.end(), what) != dumps.end();
@@ -73,8 +97,7 @@ bool wants(const std::vector<std::string>& dumps, const char* what) {
 void writeOutput(const FrameResult& frame, const std::string& out, const ExrExtras& extras,
                  const OutputMetadata& metadata) {
   ensureParentDirectory(out);
-  std::string ext = std::filesystem::path(out).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowercase(std::filesystem::path(out).extension().string());
   if (ext == ".exr") writeExr(frame.framebuffer, out, extras, metadata);
   else writeImage(frame.framebuffer, out, metadata);
 }
@@ -103,7 +126,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
       ->take_all()
       ->allow_extra_args(false);
   render->add_option("--threads", args.threads, "Worker threads (0: all cores); the output does not depend on it")
-      ->check(CLI::Range(0, 256));
+      ->check(wholeNumberIn(0, 256));
   render->add_flag("--quiet", args.quiet, "Print nothing but errors");
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
   render->add_option("--dump", args.dumps,
@@ -124,15 +147,24 @@ int runRender(const RenderArgs& args) {
   std::optional<Scene> scene = loadSceneOrReport(args.scene);
   if (!scene) return kBadInput;
 
+  // Every flag is checked here, before the render: bad usage exits 2 with nothing written.
   FrameOptions options;
   options.threads = args.threads;
   if (!parseMethodOrReport(args.method, options.method)) return kBadInput;
   std::vector<std::string> outputs = args.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
+  bool anyExr = false;
   for (const std::string& out : outputs) {
-    const std::string ext = std::filesystem::path(out).extension().string();
-    if (ext != ".png" && ext != ".exr" && ext != ".PNG" && ext != ".EXR") {
-      std::cerr << out << ": unsupported output format '" << ext << "' (expected .png or .exr)\n";
+    // Any case, as writeImage accepts it: out.PNG, out.Exr.
+    const std::string ext = lowercase(std::filesystem::path(out).extension().string());
+    if (ext != ".png" && ext != ".exr") {
+      std::cerr << out << ": unsupported output format '" << std::filesystem::path(out).extension().string()
+                << "' (expected .png or .exr, in any case)\n";
+      return kBadInput;
+    }
+    anyExr = anyExr || ext == ".exr";
+    if (!args.scene.scene.empty() && sameFile(out, args.scene.scene)) {
+      std::cerr << out << ": refusing to write the output over the scene file itself\n";
       return kBadInput;
     }
   }
@@ -149,16 +181,45 @@ int runRender(const RenderArgs& args) {
     options.observer = &history;
   }
   const bool dumpPasses = wants(args.dumps, "passes");
-  std::vector<int> region;
-  if (!args.dumpRegion.empty() && (!parseInts(args.dumpRegion, region, 4) || region[2] <= 0 || region[3] <= 0)) {
-    std::cerr << "--dump-region: expected x,y,w,h with w, h > 0, got '" << args.dumpRegion << "'\n";
-    return kBadInput;
+  const bool dumpStencil = wants(args.dumps, "stencil");
+  std::vector<int64_t> region;
+  if (!args.dumpRegion.empty()) {
+    // 64-bit ends: x + w cannot overflow for any x, w an int holds; the region must meet the image.
+    const bool parsed = parseInts(args.dumpRegion, region, 4);
+    const bool valid = parsed && region[2] > 0 && region[3] > 0 && region[2] <= INT32_MAX && region[3] <= INT32_MAX &&
+                       region[0] >= INT32_MIN && region[1] >= INT32_MIN && region[0] < scene->width &&
+                       region[1] < scene->height && region[0] + region[2] > 0 && region[1] + region[3] > 0;
+    if (!valid) {
+      std::cerr << "--dump-region: expected x,y,w,h (whole numbers, w and h at least 1) of a region that overlaps the "
+                << scene->width << "x" << scene->height << " image, got '" << args.dumpRegion << "'\n";
+      return kBadInput;
+    }
   }
-  options.keepStencil = wants(args.dumps, "stencil") || !region.empty();
+  // The per-light stencil PNGs and grids are made as each light's volume pass ends (below), so
+  // they hold one light's buffer at a time. Only the stencil.L<i> channels of an EXR need every
+  // light's counts at once: their number is bounded before anything is rendered.
+  options.keepStencil = (dumpStencil || !region.empty()) && anyExr;
+  if (options.keepStencil) {
+    const ShadowMethod method = options.method.value_or(scene->shadow.method);
+    const bool volumes = method == ShadowMethod::ZPass || method == ShadowMethod::ZFail || method == ShadowMethod::Auto;
+    uint64_t lights = 0;
+    for (const Light& light : scene->lights) lights += expandSoftLight(light).size();
+    const std::optional<uint64_t> counts =
+        checkedMul(checkedMul(uint64_t(scene->width), uint64_t(scene->height)).value_or(UINT64_MAX), lights);
+    if (volumes && lights > 1 && (!counts || *counts > kMaxKeptStencilCounts)) {
+      std::cerr << "--dump stencil with an .exr output: the EXR's per-light stencil channels would hold " << lights
+                << " lights x " << scene->width << "x" << scene->height << " counts, more than the limit of "
+                << kMaxKeptStencilCounts << " (2^27); drop the .exr output or the --dump, or render fewer lights or a "
+                   "smaller image\n";
+      return kBadInput;
+    }
+  }
   options.keepShadowMaps = wants(args.dumps, "shadowmap");
   if (args.view == "volumes") options.volumeView = VolumeViewMode::FrontBack;
   if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
   std::vector<std::string> passFiles;
+  std::string grids;  // --dump-region's text, one grid per light, printed after the render
+  size_t stencilPasses = 0;
   try {
     const OutputMetadata metadata = renderMetadata(args, *scene, options);
     const auto showing = [&](std::string content) {
@@ -166,41 +227,48 @@ int runRender(const RenderArgs& args) {
       m.content = std::move(content);
       return m;
     };
-    if (dumpPasses) {
-      options.onPass = [&](const std::string& pass, const Framebuffer& fb) {
-        const std::string path = siblingPath(outputs.front(), "pass-" + pass);
-        ensureParentDirectory(path);
-        // A volume pass changes only the stencil buffer: its picture is the stencil counts.
-        if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
+    options.onPass = [&](const std::string& pass, const Framebuffer& fb) {
+      // "NN-stencil-L<i>": the counts of light i are in the stencil buffer now.
+      const size_t at = pass.find("-stencil-");
+      if (at != std::string::npos && fb.hasStencil() && (dumpStencil || !region.empty())) {
+        const std::string light = pass.substr(at + 9);
+        ++stencilPasses;
+        if (dumpStencil) {
           StencilViewOptions view;
-          view.signedCounts = true;
-          writeStencilPng(fb, path, view, showing("pass " + pass));
-        } else if (fb.hasColor()) {
-          writePng(fb, path, false, showing("pass " + pass));
-        } else {
-          return;
+          view.signedCounts = true;  // wrapping ops store -1 as 255
+          const std::string path = siblingPath(outputs.front(), "stencil-" + light);
+          ensureParentDirectory(path);
+          writeStencilPng(fb.stencil(), fb.width(), fb.height(), path, view, showing("stencil " + light));
+          passFiles.push_back(path);
         }
-        passFiles.push_back(path);
-      };
-    }
+        if (!region.empty())
+          grids += "light " + light + ":\n" +
+                   stencilGrid(fb.stencil(), fb.width(), fb.height(), int(region[0]), int(region[1]), int(region[2]),
+                               int(region[3]), true);
+      }
+      if (!dumpPasses) return;
+      const std::string path = siblingPath(outputs.front(), "pass-" + pass);
+      ensureParentDirectory(path);
+      // A volume pass changes only the stencil buffer: its picture is the stencil counts.
+      if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
+        StencilViewOptions view;
+        view.signedCounts = true;
+        writeStencilPng(fb, path, view, showing("pass " + pass));
+      } else if (fb.hasColor()) {
+        writePng(fb, path, false, showing("pass " + pass));
+      } else {
+        return;
+      }
+      passFiles.push_back(path);
+    };
     const FrameResult frame = renderFrame(*scene, options);
     const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
     for (const std::string& out : outputs) {
       writeOutput(frame, out, extras, showing("frame"));
       if (!args.quiet) std::cerr << "wrote " << out << '\n';
     }
-    if (wants(args.dumps, "stencil")) {
-      StencilViewOptions view;
-      view.signedCounts = true;  // wrapping ops store -1 as 255
-      for (size_t i = 0; i < frame.stencilPerLight.size(); ++i) {
-        const std::string path = siblingPath(outputs.front(), "stencil-" + frame.stencilLightNames[i]);
-        writeStencilPng(frame.stencilPerLight[i], scene->width, scene->height, path, view,
-                        showing("stencil " + frame.stencilLightNames[i]));
-        passFiles.push_back(path);
-      }
-      if (frame.stencilPerLight.empty() && !args.quiet)
-        std::cerr << "--dump stencil: this method uses no stencil buffer\n";
-    }
+    if (dumpStencil && stencilPasses == 0 && !args.quiet)
+      std::cerr << "--dump stencil: this method uses no stencil buffer\n";
     if (wants(args.dumps, "depth") && frame.framebuffer.hasDepth()) {
       std::vector<float> depth(frame.framebuffer.depthCodes().size());
       for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(frame.framebuffer.depthCodec().decode(frame.framebuffer.depthCodes()[i]));
@@ -223,12 +291,7 @@ int runRender(const RenderArgs& args) {
     }
     if (wants(args.dumps, "shadowmap") && frame.shadowMaps.empty() && !args.quiet)
       std::cerr << "--dump shadowmap: this method renders no shadow map\n";
-    if (!region.empty()) {
-      for (size_t i = 0; i < frame.stencilPerLight.size(); ++i)
-        std::cout << "light " << frame.stencilLightNames[i] << ":\n"
-                  << stencilGrid(frame.stencilPerLight[i], scene->width, scene->height, region[0], region[1], region[2],
-                                 region[3], true);
-    }
+    std::cout << grids;
     if (!args.quiet)
       for (const std::string& p : passFiles) std::cerr << "wrote " << p << '\n';
     if (args.stats) printStats(frame);

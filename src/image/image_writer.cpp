@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "image/atomic_write.h"
@@ -15,20 +16,63 @@ namespace shadowref {
 
 namespace {
 
-// Writes one image through OpenImageIO into an already created (empty) temporary file. The plugin
+// OpenImageIO's output goes through this proxy straight to the temporary file's descriptor, so
+// every byte passes writeAllAt: a plugin that ignores a short write (the PNG one does) cannot hide
+// it, because the first failure is kept here and reported after close.
+class DescriptorSink final : public OIIO::Filesystem::IOProxy {
+ public:
+  explicit DescriptorSink(const TempFile& temp) : IOProxy(temp.path, Write), fd_(temp.fd) {}
+  const char* proxytype() const override { return "shadowref-descriptor"; }
+  size_t write(const void* buf, size_t size) override {
+    const size_t n = pwrite(buf, size, m_pos);
+    m_pos += int64_t(n);
+    return n;
+  }
+  size_t pwrite(const void* buf, size_t size, int64_t offset) override {
+    if (!failure_.empty() || offset < 0) return 0;
+    try {
+      writeAllAt(fd_, buf, size, uint64_t(offset));
+    } catch (const std::exception& e) {
+      failure_ = e.what();
+      return 0;
+    }
+    end_ = std::max(end_, uint64_t(offset) + size);
+    return size;
+  }
+  size_t read(void*, size_t) override { return 0; }
+  size_t pread(void*, size_t, int64_t) override { return 0; }
+  size_t size() const override { return size_t(end_); }
+  const std::string& failure() const { return failure_; }
+
+ private:
+  int fd_;
+  uint64_t end_ = 0;
+  std::string failure_;  // the first failed write, empty while every byte arrived
+};
+
+// Writes one image through OpenImageIO into the already created (empty) temporary file. The plugin
 // is chosen by format name, because the temporary file's name does not end in the extension.
-void writeWithOiio(const std::string& tempPath, const char* formatName, const OIIO::ImageSpec& spec,
+void writeWithOiio(const TempFile& temp, const char* formatName, const OIIO::ImageSpec& spec,
                    OIIO::TypeDesc dataFormat, const void* data) {
   auto out = OIIO::ImageOutput::create(formatName);
   if (!out) throw std::runtime_error(std::string("OpenImageIO has no ") + formatName + " writer: " +
                                      OIIO::geterror());
-  if (!out->open(tempPath, spec)) throw std::runtime_error(out->geterror());
+  if (!out->supports("ioproxy"))
+    throw std::runtime_error(std::string("OpenImageIO's ") + formatName + " writer cannot write through a proxy");
+  DescriptorSink sink(temp);
+  out->set_ioproxy(&sink);
+  auto failed = [&](std::string reason) {
+    if (!sink.failure().empty()) reason = sink.failure();  // the cause, not its consequence
+    return std::runtime_error(reason.empty() ? "the image writer failed" : reason);
+  };
+  if (!out->open(temp.path, spec)) throw failed(out->geterror());
   if (!out->write_image(dataFormat, data)) {
     std::string reason = out->geterror();
     out->close();
-    throw std::runtime_error(reason);
+    throw failed(reason);
   }
-  if (!out->close()) throw std::runtime_error(out->geterror());
+  if (!out->close()) throw failed(out->geterror());
+  if (!sink.failure().empty()) throw failed("");
 }
 
 // Provenance as string attributes: OpenImageIO writes them as EXR header attributes and as PNG
@@ -70,7 +114,7 @@ void writePng8(const Image8& image, const std::string& path, const OutputMetadat
   checkImage8(image);
   OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
   addMetadata(spec, metadata);
-  writeFileAtomically(path, [&](const std::string& temp) {
+  writeFileAtomically(path, [&](const TempFile& temp) {
     writeWithOiio(temp, "png", spec, OIIO::TypeDesc::UINT8, image.pixels.data());
   });
 }
@@ -188,7 +232,7 @@ void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& e
       }
     }
   }
-  writeFileAtomically(path, [&](const std::string& temp) {
+  writeFileAtomically(path, [&](const TempFile& temp) {
     // TypeUnknown: the data is in the file's own per-channel formats.
     writeWithOiio(temp, "openexr", spec, OIIO::TypeUnknown, words.data());
   });

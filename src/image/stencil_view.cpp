@@ -187,13 +187,15 @@ std::string stencilGrid(std::span<const uint8_t> stencil, int fbWidth, int fbHei
                         bool signedCounts) {
   checkStencil(stencil, fbWidth, fbHeight);
   if (w <= 0 || h <= 0) throw std::invalid_argument("stencil region needs a positive width and height");
+  // The ends in 64 bits: x + w overflows an int for x, w near INT_MAX.
+  const int64_t xEnd = int64_t(x) + w, yEnd = int64_t(y) + h;  // exclusive
   const int x0 = std::max(x, 0), y0 = std::max(y, 0);
-  const int x1 = std::min(x + w, fbWidth) - 1, y1 = std::min(y + h, fbHeight) - 1;  // inclusive
+  const int x1 = int(std::min<int64_t>(xEnd, fbWidth)) - 1, y1 = int(std::min<int64_t>(yEnd, fbHeight)) - 1;
   if (x0 > x1 || y0 > y1)
     throw std::invalid_argument("stencil region " + std::to_string(x) + "," + std::to_string(y) + " " +
                                 std::to_string(w) + "x" + std::to_string(h) + " lies outside the " +
                                 std::to_string(fbWidth) + "x" + std::to_string(fbHeight) + " framebuffer");
-  const bool clipped = x0 != x || y0 != y || x1 != x + w - 1 || y1 != y + h - 1;
+  const bool clipped = x0 != x || y0 != y || x1 + 1 != xEnd || y1 + 1 != yEnd;
 
   size_t column = 1;
   for (int cx = x0; cx <= x1; ++cx) column = std::max(column, std::to_string(cx).size());

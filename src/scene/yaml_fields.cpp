@@ -60,9 +60,10 @@ double readNumber(const YamlValue& v, const std::string& path) {
 double readNumberInRange(const YamlValue& v, const std::string& path, double min, double max) {
   double x = readNumber(v, path);
   if (x < min || x > max) {
+    // The value as written: %g would round 90.0000001 to "90 is outside [0, 90]".
     char buf[160];
-    std::snprintf(buf, sizeof buf, ": %g is outside the allowed range [%g, %g]", x, min, max);
-    failAt(v.at, path + buf);
+    std::snprintf(buf, sizeof buf, " is outside the allowed range [%.17g, %.17g]", min, max);
+    failAt(v.at, path + ": " + v.scalar + buf);
   }
   return x;
 }

@@ -2,14 +2,22 @@
 // file:line:col on stderr, output files complete or absent.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <csignal>
+#include <cstring>
 #include <string>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -50,6 +58,70 @@ std::string writeScene(const std::string& name, const std::string& text) {
   const fs::path p = scratch() / name;
   std::ofstream(p) << text;
   return p.string();
+}
+
+// Every entry's file name in dir, sorted.
+std::vector<std::string> entries(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path dir = scratch() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Starts the CLI with argv (no shell), stderr to errFile, in the source folder. In the child:
+// fileSizeLimit > 0 sets RLIMIT_FSIZE (SIGXFSZ ignored, so a write beyond it fails with EFBIG as
+// on a full disk); holdTemp sets the writer's test hook (atomic_write.h).
+pid_t spawn(const std::vector<std::string>& args, const fs::path& errFile, long fileSizeLimit, bool holdTemp) {
+  const pid_t pid = ::fork();
+  if (pid != 0) return pid;
+  if (::chdir(SHADOWREF_SOURCE_DIR) != 0) ::_exit(126);
+  const int err = ::open(errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (err < 0 || ::dup2(err, 2) < 0) ::_exit(126);
+  const int null = ::open("/dev/null", O_WRONLY);
+  if (null < 0 || ::dup2(null, 1) < 0) ::_exit(126);
+  if (holdTemp) ::setenv("SHADOWREF_TEST_HOLD_TEMP_FILE", "1", 1);
+  if (fileSizeLimit > 0) {
+    ::signal(SIGXFSZ, SIG_IGN);  // stays ignored across exec
+    const rlimit limit{rlim_t(fileSizeLimit), rlim_t(fileSizeLimit)};
+    if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(126);
+  }
+  std::vector<char*> argv{const_cast<char*>(SHADOWREF_CLI)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  ::execv(SHADOWREF_CLI, argv.data());
+  ::_exit(127);
+}
+
+// Writes a PNG whose header declares width x height grey pixels but whose data is one empty row:
+// what a hostile file looks like to a reader that trusts the header. CRCs are computed, so only the
+// sizes are false.
+void writeLyingPng(const fs::path& path, uint32_t width, uint32_t height) {
+  auto crc32 = [](const std::string& bytes) {
+    uint32_t crc = 0xFFFFFFFFu;
+    for (unsigned char c : bytes) {
+      crc ^= c;
+      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return crc ^ 0xFFFFFFFFu;
+  };
+  auto be32 = [](uint32_t v) {
+    return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+  };
+  auto chunk = [&](const std::string& type, const std::string& data) {
+    return be32(uint32_t(data.size())) + type + data + be32(crc32(type + data));
+  };
+  const std::string ihdr = be32(width) + be32(height) + std::string{8, 0, 0, 0, 0};  // 8-bit grey
+  // zlib stream of one byte (filter 0), stored block: 78 01, 01 0001 fffe, 00, adler32 = 00010001.
+  const std::string idat{'\x78', '\x01', '\x01', '\x01', '\x00', '\xfe', '\xff', '\x00', '\x00', '\x01', '\x00', '\x01'};
+  std::ofstream(path, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) << chunk("IHDR", ihdr)
+                                        << chunk("IDAT", idat) << chunk("IEND", "");
 }
 
 }  // namespace
@@ -216,4 +288,155 @@ TEST_CASE("the pixel history (--pixel-history) prints the fragments of the watch
   CHECK(r.status == 0);
   CHECK(r.out.find("pixel 32,10") != std::string::npos);
   CHECK(r.out.find("ambient pass") != std::string::npos);
+}
+
+TEST_CASE("a write that fails half-way (file-size limit) exits 1 naming the file, leaving no file", "[cli][hostile]") {
+  for (const char* name : {"full.png", "full.exr"}) {
+    const fs::path dir = freshDir("fsize");
+    const fs::path out = dir / name, err = scratch() / "fsize-err.txt";
+    // 400x300 of the room is tens of kilobytes in either format; the limit lets 4 KiB through.
+    const pid_t pid = spawn({"render", "scenes/room.yaml", "-D", "image.width=400", "-D", "image.height=300", "-o",
+                             out.string()},
+                            err, 4096, false);
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    const std::string message = slurp(err);
+    INFO(message);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 1);
+    CHECK(message.find("cannot write '" + out.string() + "'") != std::string::npos);
+    CHECK(message.find(std::strerror(EFBIG)) != std::string::npos);
+    CHECK(entries(dir).empty());  // neither the target nor a temporary file
+  }
+}
+
+TEST_CASE("SIGTERM or SIGINT while an output is written ends the CLI by that signal and removes the temporary file",
+          "[cli][hostile]") {
+  for (const int sig : {SIGTERM, SIGINT}) {
+    const fs::path dir = freshDir("signal");
+    const fs::path out = dir / "out.png", err = scratch() / "signal-err.txt";
+    const pid_t pid = spawn({"render", "scenes/minimal.yaml", "-D", "image.width=32", "-D", "image.height=24", "-o",
+                             out.string()},
+                            err, 0, true);
+    // The hook holds the writer right after it created "out.png.tmp-<pid>-<n>": wait for that file.
+    bool sawTemp = false;
+    for (int i = 0; i < 3000 && !sawTemp; ++i) {
+      for (const std::string& name : entries(dir)) sawTemp = sawTemp || name.rfind("out.png.tmp-", 0) == 0;
+      if (!sawTemp) ::usleep(10000);
+    }
+    CHECK(sawTemp);
+    ::kill(pid, sig);
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    CHECK(WIFSIGNALED(status));  // a shell reports 128 + sig: 143, 130
+    CHECK((WIFSIGNALED(status) ? WTERMSIG(status) : 0) == sig);
+    CHECK(entries(dir).empty());
+  }
+}
+
+TEST_CASE("-o onto the scene file itself is refused with exit 2 and the scene kept", "[cli][hostile]") {
+  const fs::path dir = freshDir("self");
+  const fs::path scene = dir / "scene.png";  // a YAML scene under an image name: -o would overwrite it
+  const std::string text = "image: {width: 16, height: 12}\n";
+  std::ofstream(scene) << text;
+  const Run r = run("render '" + scene.string() + "' -o '" + scene.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("the scene file itself") != std::string::npos);
+  CHECK(slurp(scene) == text);
+  // Through another spelling of the same path, too.
+  const Run dotted = run("render '" + scene.string() + "' -o '" + (dir / "." / "scene.png").string() + "'");
+  CHECK(dotted.status == 2);
+  CHECK(slurp(scene) == text);
+  CHECK(entries(dir) == std::vector<std::string>{"scene.png"});
+}
+
+TEST_CASE("compare refuses an image whose header declares more pixels than its file holds, before allocating",
+          "[cli][hostile]") {
+  const fs::path dir = freshDir("lying");
+  const fs::path png = dir / "huge.png";
+  // 30000^2 values are more than the 2^29 any image may have.
+  writeLyingPng(png, 30000, 30000);
+  REQUIRE(fs::file_size(png) < 100);
+  const Run r = run("compare '" + png.string() + "' '" + png.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("cannot read '" + png.string() + "'") != std::string::npos);
+  CHECK(r.err.find("30000x30000 pixels with 1 channels, more than the limit of 536870912") != std::string::npos);
+  // 20000^2 are within it, but 4e8 bytes of pixels do not fit in 1032 times the file's bytes.
+  writeLyingPng(png, 20000, 20000);
+  const Run small = run("compare '" + png.string() + "' '" + png.string() + "'");
+  CHECK(small.status == 2);
+  CHECK(small.err.find("20000x20000 pixels with 1 channels (400000000 bytes of pixels), more than its") !=
+        std::string::npos);
+  CHECK(small.err.find("file can hold") != std::string::npos);
+}
+
+TEST_CASE("--dump-region is checked before rendering: extreme or outside regions exit 2 with nothing written",
+          "[cli][hostile]") {
+  const fs::path dir = freshDir("region");
+  const std::string out = (dir / "r.png").string();
+  const std::string scene = "scenes/minimal.yaml -D image.width=64 -D image.height=48 --method zfail -o '" + out + "'";
+  for (const char* region : {"2147483647,0,2147483647,1", "0,2147483647,1,2147483647", "-2147483648,0,2147483647,1",
+                             "64,0,4,4", "0,48,4,4", "-4,0,4,4", "0,0,99999999999,1", "1,2,3", "a,b,c,d"}) {
+    INFO(region);
+    const Run r = run("render " + scene + " --dump-region " + region);
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--dump-region") != std::string::npos);
+    CHECK(entries(dir).empty());
+  }
+  // A region reaching past the image is clipped; its ends do not overflow.
+  const Run clipped = run("render " + scene + " --dump-region 60,0,2147483647,2 --quiet");
+  CHECK(clipped.status == 0);
+  CHECK(clipped.out.find("stencil x 60..63, y 0..1") != std::string::npos);
+  CHECK(clipped.out.find("clipped") != std::string::npos);
+}
+
+TEST_CASE("--dump stencil writes each light's picture as its pass ends and bounds what an EXR keeps",
+          "[cli][hostile]") {
+  const std::string scene = writeScene("three.yaml",
+                                       "image: {width: 64, height: 48}\n"
+                                       "lights:\n  - {position: [-2, 4, 1]}\n  - {position: [2, 4, 1]}\n"
+                                       "  - {position: [0, 4, -2]}\n"
+                                       "meshes: {ground: {plane: {size: [8, 8]}}, box: {box: {size: [1, 1, 1]}}}\n"
+                                       "nodes: [{mesh: ground}, {mesh: box, translate: [0, 0.5, 0]}]\n"
+                                       "shadow: {method: zfail}\n");
+  const fs::path dir = freshDir("stencil");
+  const Run r = run("render '" + scene + "' -o '" + (dir / "s.png").string() + "' --dump stencil --quiet");
+  CHECK(r.status == 0);
+  CHECK(entries(dir) == std::vector<std::string>{"s.png", "s.stencil-L0.png", "s.stencil-L1.png", "s.stencil-L2.png"});
+  // 3 lights x 8192 x 8192 counts = 3 * 2^26 > 2^27: refused before rendering, nothing written.
+  const fs::path big = freshDir("stencil-big");
+  const Run refused = run("render '" + scene + "' -D image.width=8192 -D image.height=8192 -o '" +
+                          (big / "s.exr").string() + "' --dump stencil");
+  CHECK(refused.status == 2);
+  CHECK(refused.err.find("134217728") != std::string::npos);
+  CHECK(entries(big).empty());
+}
+
+TEST_CASE("flag messages say what is wrong: not a number, an unknown subcommand, any-case extensions",
+          "[cli][hostile]") {
+  const Run letters = run("render --threads abc");
+  CHECK(letters.status == 2);
+  CHECK(letters.err.find("'abc' is not a whole number (allowed: 0 to 256)") != std::string::npos);
+  const Run large = run("render --threads 257");
+  CHECK(large.status == 2);
+  CHECK(large.err.find("257 is outside the allowed range 0 to 256") != std::string::npos);
+  const Run typo = run("rendr scenes/minimal.yaml");
+  CHECK(typo.status == 2);
+  CHECK(typo.err.find("unknown subcommand 'rendr' (did you mean 'render'?)") != std::string::npos);
+  const Run far = run("xyzzy");
+  CHECK(far.status == 2);
+  CHECK(far.err.find("unknown subcommand 'xyzzy'; the subcommands are") != std::string::npos);
+  const fs::path dir = freshDir("case");
+  const Run mixed = run("render scenes/minimal.yaml -D image.width=16 -D image.height=12 -o '" + (dir / "a.Png").string() +
+                        "' -o '" + (dir / "b.eXr").string() + "' --quiet");
+  CHECK(mixed.status == 0);
+  CHECK(entries(dir) == std::vector<std::string>{"a.Png", "b.eXr"});
+}
+
+TEST_CASE("a range message shows the value as written, not rounded into the range", "[cli][hostile]") {
+  // %g printed 90.0000001 as "90 is outside the allowed range [0, 90]".
+  const std::string scene = writeScene("cutoff.yaml", "lights: [{type: spot, position: [0, 4, 0], spot_cutoff: 90.0000001}]\n");
+  const Run r = run("check '" + scene + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("spot_cutoff: 90.0000001 is outside the allowed range [0, 90]") != std::string::npos);
 }

@@ -1,8 +1,10 @@
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 
 #include <catch2/catch.hpp>
+#include <OpenImageIO/imageio.h>
 
 #include "image/image_compare.h"
 #include "image/image_writer.h"
@@ -232,4 +234,49 @@ TEST_CASE("a golden with per-light stencil channels is compared with the same ex
   CHECK(r.firstFailures[0].x == 3);
   CHECK(r.firstFailures[0].y == 0);
   CHECK(r.firstFailures[0].failingChannels == std::vector<std::string>{"stencil.L1"});
+}
+
+TEST_CASE("readChannelImage refuses more channel values than its limit, before reading pixels", "[image][hostile]") {
+  TempDir dir("compare-limit");
+  const std::string path = dir.file("fb.exr");
+  writeExr(makeFramebuffer(), path);  // 4x3 with R, G, B, A, Z, stencil: 72 values
+  ReadLimits exact;
+  exact.maxValues = 72;
+  CHECK(readChannelImage(path, exact).data.size() == 6);  // the limit itself is allowed
+  ReadLimits tight;
+  tight.maxValues = 71;
+  try {
+    readChannelImage(path, tight);
+    FAIL("no exception");
+  } catch (const std::runtime_error& e) {
+    CHECK(containsText(e.what(), "cannot read '" + path + "'"));
+    CHECK(containsText(e.what(), "4x3 pixels with 6 channels, more than the limit of 71 channel values"));
+  }
+}
+
+TEST_CASE("readChannelImage refuses an uncompressed EXR cut short, from its size alone", "[image][hostile]") {
+  // Uncompressed, the pixel bytes are in the file one to one: a file shorter than them is refused
+  // by the size check, before OpenImageIO is asked for a single pixel.
+  TempDir dir("compare-cut");
+  const std::string path = dir.file("fb.exr");
+  {
+    OIIO::ImageSpec spec(64, 64, 4, OIIO::TypeDesc::FLOAT);
+    spec.attribute("compression", "none");
+    std::vector<float> pixels(64 * 64 * 4, 0.5f);
+    auto out = OIIO::ImageOutput::create(path);
+    REQUIRE(out);
+    REQUIRE(out->open(path, spec));
+    REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    REQUIRE(out->close());
+  }
+  CHECK(readChannelImage(path).width == 64);
+  const auto full = std::filesystem::file_size(path);
+  REQUIRE(full > 64 * 64 * 4 * 4);
+  std::filesystem::resize_file(path, full - 64 * 64 * 4 * 4 / 2);  // half the pixel bytes gone
+  try {
+    readChannelImage(path);
+    FAIL("no exception");
+  } catch (const std::runtime_error& e) {
+    CHECK(containsText(e.what(), "(65536 bytes of pixels), more than its"));
+  }
 }

@@ -278,8 +278,8 @@ TEST_CASE("a writer that fails half-way leaves the old file untouched and no tem
   const std::string path = dir.file("keep.txt");
   std::ofstream(path) << "old";
   CHECK_THROWS_AS(writeFileAtomically(path,
-                                      [](const std::string& temp) {
-                                        std::ofstream(temp) << "half";
+                                      [](const TempFile& temp) {
+                                        writeAllAt(temp.fd, "half", 4, 0);
                                         throw std::runtime_error("disk full");
                                       }),
                   std::runtime_error);
