@@ -9,6 +9,7 @@
 
 #include "fuzz/fuzz_support.h"
 #include "scene/mesh_import.h"
+#include "scene/scene_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
