@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
+
 #include "cli/command_line.h"
 #include "fuzz/fuzz_support.h"
 
@@ -36,6 +38,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     fixtures[entry.path()] = bytes.str();
   }
   fuzz::silenceStreams();
+  OIIO::attribute("threads", 1);
+  OIIO::attribute("exr_threads", 1);
   return 0;
 }
 
