@@ -4,7 +4,9 @@
 # "<command line>:N:COL: message" for a -D), no crash signal, no timeout, no allocation beyond
 # the memory limit (1 GB), nothing left in the output folder (neither the image nor a temporary).
 # The folder is read when the test runs, so every *.yaml put there is covered; NAME.args next to
-# NAME.yaml holds extra arguments (one per line, e.g. "-D" and "camera.near=0").
+# NAME.yaml holds extra arguments (one per line, e.g. "-D" and "camera.near=0"). Every file in
+# FOLDER/images/ is compared with itself (`shadowref compare F F`) under the same limits and must
+# be refused with exit 2 and a first line naming the file.
 #   hostile_scenes.sh SHADOWREF_BINARY FOLDER
 set -u
 cli=$1
@@ -24,8 +26,10 @@ fi
 
 failures=0
 count=0
-for scene in "$folder"/*.yaml; do
+for scene in "$folder"/*.yaml "$folder"/images/*; do
   [ -e "$scene" ] || continue
+  image=false
+  [[ $scene == "$folder"/images/* ]] && image=true
   count=$((count + 1))
   args=()
   if [ -f "${scene%.yaml}.args" ]; then mapfile -t args < "${scene%.yaml}.args"; fi
@@ -33,13 +37,18 @@ for scene in "$folder"/*.yaml; do
   (
     $asan || ulimit -v $((limit_mb * 1024))
     ulimit -t $cpu_seconds
+    if $image; then exec timeout -s KILL "$wall_seconds" "$cli" compare "$scene" "$scene"; fi
     exec timeout -s KILL "$wall_seconds" "$cli" render "$scene" "${args[@]}" -o "$out/frame.png" --quiet
   ) > /dev/null 2> "$out.stderr"
   status=$?
   first=$(head -n 1 "$out.stderr")
   problems=()
   [ "$status" -eq 2 ] || problems+=("exit status $status, expected 2$( ((status > 128)) && echo " (signal $((status - 128)))")")
-  [[ $first =~ ^[^:]+:[0-9]+:[0-9]+:\ .+ ]] || problems+=("first line of stderr is not 'PATH:LINE:COL: message'")
+  if $image; then
+    [[ $first == *"$scene"* ]] || problems+=("first line of stderr does not name the file")
+  else
+    [[ $first =~ ^[^:]+:[0-9]+:[0-9]+:\ .+ ]] || problems+=("first line of stderr is not 'PATH:LINE:COL: message'")
+  fi
   left=$(ls -A "$out")
   [ -z "$left" ] || problems+=("left in the output folder: $(echo $left)")
   if ((${#problems[@]})); then
@@ -52,5 +61,5 @@ for scene in "$folder"/*.yaml; do
   fi
   rm -rf "$out" "$out.stderr"
 done
-echo "$count hostile scenes, $failures failed"
+echo "$count hostile inputs, $failures failed"
 [ "$count" -gt 0 ] && [ "$failures" -eq 0 ]
