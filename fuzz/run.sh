@@ -151,9 +151,9 @@ open(sys.argv[1] + "/big.glb", "wb").write(b"b" + glb)
 EOF
 }
 seeds_cli() {
-  # A long argument vector (~60 KB): the minimal scene with two thousand -D overrides.
+  # A long argument vector (~60 KB): the minimal scene with 2500 -D overrides.
   { printf 'render\nminimal.yaml\n-o\nx.png\n'
-    for i in $(seq 1 2000); do printf -- '-D\ncamera.near=0.%05d\n' "$i"; done; } > "$out/seeds/cli/big_overrides"
+    for i in $(seq 1 2500); do printf -- '-D\ncamera.near=0.%05d\n' "$i"; done; } > "$out/seeds/cli/big_overrides"
 }
 seeds_image_compare() {
   # A 160x160 noisy PNG (~77 KB, does not compress) and a 64x64 EXR with a Z channel (~85 KB).
