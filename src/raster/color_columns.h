@@ -18,14 +18,19 @@ inline void storeColorLanes(ColorLanes r, ColorLanes g, ColorLanes b, ColorLanes
   static_assert(sizeof(glm::dvec4) == sizeof(ColorLanes));
   if (n == 4) {
     using Index = int64_t __attribute__((vector_size(32)));
-    const ColorLanes rg02 = __builtin_shuffle(r, g, Index{0, 4, 2, 6});  // r0 g0 r2 g2
-    const ColorLanes rg13 = __builtin_shuffle(r, g, Index{1, 5, 3, 7});  // r1 g1 r3 g3
-    const ColorLanes ba02 = __builtin_shuffle(b, a, Index{0, 4, 2, 6});
-    const ColorLanes ba13 = __builtin_shuffle(b, a, Index{1, 5, 3, 7});
-    const ColorLanes p0 = __builtin_shuffle(rg02, ba02, Index{0, 1, 4, 5}),
-                     p1 = __builtin_shuffle(rg13, ba13, Index{0, 1, 4, 5}),
-                     p2 = __builtin_shuffle(rg02, ba02, Index{2, 3, 6, 7}),
-                     p3 = __builtin_shuffle(rg13, ba13, Index{2, 3, 6, 7});
+    // The same lane selection in GCC's and clang's spelling (clang builds the fuzz targets).
+#if defined(__clang__)
+#define SHADOWREF_SHUFFLE(x, y, i0, i1, i2, i3) __builtin_shufflevector(x, y, i0, i1, i2, i3)
+#else
+#define SHADOWREF_SHUFFLE(x, y, i0, i1, i2, i3) __builtin_shuffle(x, y, Index{i0, i1, i2, i3})
+#endif
+    const ColorLanes rg02 = SHADOWREF_SHUFFLE(r, g, 0, 4, 2, 6);  // r0 g0 r2 g2
+    const ColorLanes rg13 = SHADOWREF_SHUFFLE(r, g, 1, 5, 3, 7);  // r1 g1 r3 g3
+    const ColorLanes ba02 = SHADOWREF_SHUFFLE(b, a, 0, 4, 2, 6);
+    const ColorLanes ba13 = SHADOWREF_SHUFFLE(b, a, 1, 5, 3, 7);
+    const ColorLanes p0 = SHADOWREF_SHUFFLE(rg02, ba02, 0, 1, 4, 5), p1 = SHADOWREF_SHUFFLE(rg13, ba13, 0, 1, 4, 5),
+                     p2 = SHADOWREF_SHUFFLE(rg02, ba02, 2, 3, 6, 7), p3 = SHADOWREF_SHUFFLE(rg13, ba13, 2, 3, 6, 7);
+#undef SHADOWREF_SHUFFLE
     // One store each (an array of the four, copied at once, went through the stack).
     std::memcpy(&out[0], &p0, sizeof p0);
     std::memcpy(&out[1], &p1, sizeof p1);
