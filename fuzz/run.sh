@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fuzzes the scene loader, the -D overrides and the OBJ/glTF importers with libFuzzer and
-# AddressSanitizer (issue 3). Builds fuzz/scene_loader_fuzz.cpp with clang++-14 directly against
+# AddressSanitizer. Builds fuzz/scene_loader_fuzz.cpp with clang++-14 directly against
 # the library sources (not through the main CMake), seeds the corpus from scenes/ and tests/data/,
 # runs for a bounded time and exits non-zero when it finds a crash (the input is kept in
 # build-fuzz/artifacts/; turn it into a regression test in tests/scene/loader_fuzz_regressions_test.cpp).

@@ -1,4 +1,4 @@
-// libFuzzer target for everything that reads user input (issue 3): the scene loader with its
+// libFuzzer target for everything that reads user input: the scene loader with its
 // -D overrides, and the OBJ and glTF importers through a temporary file. A SceneError is the
 // correct answer to bad input; anything else escaping, a crash or a sanitizer report is a bug.
 //

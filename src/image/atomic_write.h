@@ -1,4 +1,4 @@
-// An output file is written completely or not at all (SPEC.md §5): the bytes go to a temporary
+// An output file is written completely or not at all: the bytes go to a temporary
 // file beside the target, which is renamed over the target only once it is complete.
 #pragma once
 

@@ -70,7 +70,7 @@ double FragmentProcessor::fragmentDepth(const TriangleSetup& t, int x, int y) co
 
 void FragmentProcessor::interpolateVaryings(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2,
                                             double* out) const {
-  // Perspective-correct: weights lambda_i / w_i, normalised (GL 2.1 §3.5.1, eq. 3.6).
+  // Perspective-correct: weights lambda_i / w_i, normalised ([GL 2.1, §3.5.1, eq. 3.6]).
   const double b0 = double(e0) * t.v[0].invW;
   const double b1 = double(e1) * t.v[1].invW;
   const double b2 = double(e2) * t.v[2].invW;
@@ -115,7 +115,7 @@ void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_
   const uint32_t zCode = fb_.depthCodec().encode(z);
   if constexpr (watched) event.depth = fb_.depthCodec().decode(zCode);
 
-  // Stencil test, then the depth test, then the stencil update (GL 2.1 §4.1.5, §4.1.6).
+  // Stencil test, then the depth test, then the stencil update ([GL 2.1, §4.1.5, §4.1.6]).
   const StencilFaceState& sface = state_.stencil[t.facing];
   uint8_t* stencil = usesStencil_ ? &fb_.stencil()[at] : nullptr;
   if (stencil && !stencilTest(sface, *stencil)) {

@@ -1,5 +1,6 @@
 // The pluggable shading stage: everything that computes a colour (lighting, shadow-map lookups)
-// lives outside the rasterizer behind this interface (issue 2).
+// lives outside the rasterizer behind this interface, so that the
+// rasterizer stays the same for every shading model.
 #pragma once
 
 #include <glm/glm.hpp>

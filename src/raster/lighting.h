@@ -1,4 +1,5 @@
-// The Phong illumination model (000 §2.3), as OpenGL's fixed-function lighting computes it:
+// The Phong illumination model ([Kuhn 2016, §2.3]), as OpenGL's fixed-function lighting computes
+// it:
 //   colour = emission + ambient_global * ka
 //          + sum over lights: att * spot * (kd * Id * max(N.L, 0) + ks * Is * max(R.V, 0)^n)
 // with the Blinn-Phong variant using max(N.H, 0)^n, H the half vector of L and V. Lighting is

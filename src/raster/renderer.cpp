@@ -136,7 +136,7 @@ void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const 
   if (ws.clipOut.size() < 3) return;
   ws.windowPolygon.clear();
   for (const ClipVertex& v : ws.clipOut) ws.windowPolygon.push_back(toWindow(ws.clippedVertices.push(v), state.viewport));
-  // Facing of the polygon as a whole (GL 2.1 §2.14.1: the area of the clipped polygon).
+  // Facing of the polygon as a whole ([GL 2.1, §2.14.1]: the area of the clipped polygon).
   int64_t area2 = 0;
   for (size_t i = 1; i + 1 < ws.windowPolygon.size(); ++i)
     area2 += signedArea2(ws.windowPolygon[0], ws.windowPolygon[i], ws.windowPolygon[i + 1]);

@@ -1,5 +1,5 @@
 // The draw call: primitive assembly -> clipping -> triangle setup -> rasterization -> fragment
-// operations, for triangles given in clip space (SPEC.md §1).
+// operations, for triangles given in clip space ([GL 2.1, §2.11-§4.1]).
 #pragma once
 
 #include <algorithm>
