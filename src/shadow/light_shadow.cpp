@@ -60,7 +60,7 @@ HalfSpace frontOf(const glm::dmat4& modelView, double near) {
 // A perspective light's map warped by N_T needs its triangles clipped to the front of the light
 // BEFORE the warp: N_T mixes w into x, y and w, so a point behind the light (w < 0) can come out
 // with w' > 0 inside the square, and the rasterizer's clipping, done after the warp, would keep
-// it (the room's ceiling drew over the floor's map). Triangles wholly in front keep their
+// it (geometry behind the light would draw over the map). Triangles wholly in front keep their
 // vertices; the others are clipped (Sutherland–Hodgman) and fanned from new vertices.
 void appendClippedTriangles(const Mesh& mesh, const HalfSpace& front, const VertexTransform& xf,
                             std::vector<ClipVertex>& vertices, std::vector<uint32_t>& indices) {

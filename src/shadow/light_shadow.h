@@ -59,12 +59,11 @@ Aabb sceneBounds(const std::vector<Instance>& instances);
 // warped w is w'' times the light's becomes s · (Z − Z0) / w'' instead of Z / w'':
 //   - N_T keeps z and divides it by w'' (1 at the top line, up to (η + λ)/η at the base), which
 //     adds a depth gradient Z · ∇(1/w'') across the map that no surface has; polygon offset's
-//     slope term follows it. For a spot light, whose depths Z all lie near 1, it was 10× larger
-//     than the distance between the room's table and floor, and no shadow survived the offset
-//     (measured: 9.5 % wrong pixels, standard 0.5 %). With Z0 the false gradient is
-//     s · (Z − Z0) · ∇(1/w''): zero at depth Z0. ∇(1/w'') is largest where w'' is small, at the
-//     top line, near the camera; so Z0 = the light depth of `anchor`, the point where the view
-//     axis enters the focus body (clamped to the body's depth range);
+//     slope term follows it. For a spot light, whose depths Z all lie near 1, it can exceed the
+//     depth distance between an occluder and its receiver, and then no shadow survives the offset.
+//     With Z0 the false gradient is s · (Z − Z0) · ∇(1/w''): zero at depth Z0. ∇(1/w'') is largest
+//     where w'' is small, at the top line, near the camera; so Z0 = the light depth of `anchor`,
+//     the point where the view axis enters the focus body (clamped to the body's depth range);
 //   - s = 1 / the larger distance from Z0 to the ends of the body's depth range (plus
 //     kFocusedDepthMargin) spends the depth buffer on the visible part: receivers in the body
 //     get |depth| ≤ 1; casters nearer the light fall below −1 and are clamped to window depth 0

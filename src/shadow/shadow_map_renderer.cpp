@@ -22,8 +22,7 @@ namespace shadowref {
 namespace {
 
 // What a shadow-map lookup adds to a fragment's work (FragmentShader::fragmentWork), per light:
-// its matrix, divisions and texel reads, about half a plain fragment's (the outdoor frame per
-// vertex: 52 of about 230 instructions a fragment).
+// its matrix, divisions and texel reads, about half a plain fragment's.
 constexpr int kLookupFragmentWork = 2;
 
 // The camera pass's shader: GL_MODULATE of the lit colour by the compare result

@@ -108,8 +108,7 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
   }
   if (volumes.size() < casters.size()) volumes.resize(casters.size());
   // The largest casters' volumes first: the threads take the builds one at a time, and one that
-  // starts a large build last keeps the other waiting (the pumpkins' six pumpkins came after the
-  // porch's boards, and 6 % of the threads' time in this run went unused).
+  // starts a large build last keeps the other waiting.
   std::vector<size_t> largestFirst(casters.size());
   std::iota(largestFirst.begin(), largestFirst.end(), size_t(0));
   std::stable_sort(largestFirst.begin(), largestFirst.end(), [&](size_t a, size_t b) {
