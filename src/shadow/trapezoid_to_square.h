@@ -1,5 +1,5 @@
 // N_T: the projective map of a trapezoid onto the square [−1, 1]² ([Hempe 2004, §4.1.2], after
-// [Martin & Tan 2004]), built as the 8 steps of the seed, N_T = S2 · T3 · N · S1 · H · T2 · R · T1,
+// [Martin & Tan 2004]), built as Hempe's 8 steps, N_T = S2 · T3 · N · S1 · H · T2 · R · T1,
 // one function per step. Each step computes its parameter u (and v) from the trapezoid corners
 // carried through the product of the steps before it, exactly as the thesis writes.
 //
@@ -10,7 +10,7 @@
 // t0, t1, t2, t3 run counter-clockwise, N_T preserves orientation on the trapezoid, so face
 // culling in a map pass drawn through N_T keeps its meaning.
 //
-// The z row of N_T is (0, 0, 1, 0) as in the seed: z is carried, but divided by the new w after
+// The z row of N_T is (0, 0, 1, 0) as in the thesis: z is carried, but divided by the new w after
 // the projection. For an orthographic light that w is constant along each light ray, so depth
 // order along a ray is kept, and z/w is affine in window coordinates (N_T is projective), so the
 // rasterizer's linear depth interpolation stays exact; only the depth scale varies per texel.
