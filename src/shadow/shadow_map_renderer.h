@@ -1,4 +1,4 @@
-// Shadow mapping, the whole frame ([Hempe 2004, §3.1, §4.1, §4.2, §5]):
+// Shadow mapping [Williams 1978], the whole frame ([Hempe 2004, §3.1, §4.1, §4.2, §5]):
 //   1. per light, the depth map from the light: orthographic for a directional light, perspective
 //      for a spot light, six cube faces for a point light (beyond the documents); polygon offset
 //      or back faces only against self-shadowing; for TSM the light's clip space warped by N_T;

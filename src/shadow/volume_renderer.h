@@ -1,4 +1,5 @@
-// Stencil shadow volumes, the whole frame ([Kuhn 2016, §3.1, §4.2]; [SV slides]; [DSS article]):
+// Stencil shadow volumes ([Crow 1977], counted in the stencil buffer as in [Heidmann 1991]), the
+// whole frame ([Kuhn 2016, §3.1, §4.2]; [SV slides]; [DSS article]):
 //   1. ambient pass filling the depth buffer (P_inf, depth LESS);
 //   2. per light (soft lights expanded): clear stencil, draw every shadow caster's volume into the
 //      stencil buffer only, counting z-pass, z-fail or chosen per object (auto);
