@@ -1,4 +1,4 @@
-// frame_profile: renders one scene's frames and nothing else, for a profiler (issue 7).
+// frame_profile: renders one scene's frames and nothing else, for a profiler.
 //
 //   frame_profile SCENE [--frames N] [--threads N] [-D key=value ...]
 //

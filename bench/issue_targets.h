@@ -1,4 +1,4 @@
-// Issue 7's targets checked against one run's figures, so that a run of bench/vs-mesa says by
+// The speed targets checked against one run's figures, so that a run of bench/vs-mesa says by
 // itself which it met: each target a row, each compared scene a cell with its figure and "ok" or
 // "SHORT". Rows marked as information (the issue's unequal pairing, the host's capacity) carry no
 // verdict. Nothing here becomes an exit status: timing on a shared host is a measurement, not a

@@ -1,14 +1,14 @@
-// The Mesa side of bench/vs-mesa (issue 7): the same frame as shadowref's renderFrame, issued as
+// The Mesa side of bench/vs-mesa: the same frame as shadowref's renderFrame, issued as
 // OpenGL 2.1 calls to OSMesa (softpipe or llvmpipe, as GALLIUM_DRIVER chose).
 //
 // Same geometry and the same passes, not the same shading:
-//  - stencil shadow volumes (000 §3.1; volume_renderer.cpp): ambient pass (depth LESS), per light
-//    a stencil clear, the z-fail / z-pass volumes of every caster in range built on the CPU each
-//    frame with buildShadowVolume (the very function shadowref uses) and drawn with w = 0 points
-//    under P_inf in the RenderStates of volumePassStates, then the lit pass with stencil EQUAL 0,
-//    depth LEQUAL and ONE/ONE blending;
-//  - shadow maps (002 §3.1): the depth map from the light into a map_size² depth texture (a
-//    framebuffer object, polygon offset as the scene says), then one camera pass with
+//  - stencil shadow volumes ([Kuhn 2016, §3.1]; volume_renderer.cpp): ambient pass (depth LESS),
+//    per light a stencil clear, the z-fail / z-pass volumes of every caster in range built on the
+//    CPU each frame with buildShadowVolume (the very function shadowref uses) and drawn with w = 0
+//    points under P_inf in the RenderStates of volumePassStates, then the lit pass with stencil
+//    EQUAL 0, depth LEQUAL and ONE/ONE blending;
+//  - shadow maps ([Hempe 2004, §3.1]): the depth map from the light into a map_size² depth texture
+//    (a framebuffer object, polygon offset as the scene says), then one camera pass with
 //    ARB_shadow's depth compare, EYE_LINEAR texgen and the texture matrix T = bias · P · V.
 // Lighting, the MesaLighting choice:
 //  - FixedFunction: GL's fixed-function lighting, i.e. PER VERTEX (Gouraud), where shadowref's

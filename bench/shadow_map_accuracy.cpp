@@ -1,4 +1,4 @@
-// bench/shadow_map_accuracy (issue 5 "Accuracy, measured"): how many pixels a shadow map gets
+// bench/shadow_map_accuracy: how many pixels a shadow map gets
 // wrong, against the ray-traced light visibility of the oracle (tests/support/oracle), for
 // standard and trapezoidal maps at 128 … 4096 texels and each anti-self-shadowing choice.
 //
@@ -44,9 +44,9 @@ struct AntiAcne {
   std::vector<std::string> overrides;
 };
 
-// The anti-self-shadowing choices of 002 §3.2 (and none, for reference). The constant bias is
-// in window depth units of the map; 1e-4 of the outdoor scene's light depth range (~560 m) is
-// about 6 cm, of the room's (~9 m) about 1 mm.
+// The anti-self-shadowing choices of [Hempe 2004, §3.2] (and none, for reference). The constant
+// bias is in window depth units of the map; 1e-4 of the outdoor scene's light depth range (~560 m)
+// is about 6 cm, of the room's (~9 m) about 1 mm.
 std::vector<AntiAcne> antiAcneChoices() {
   return {{"offset", {}},  // the default: factor 1.1, units 4
           {"bias", {"shadow.offset_factor=0", "shadow.offset_units=0", "shadow.bias=0.0001"}},

@@ -1,4 +1,4 @@
-// Issue 7's targets over many runs of bench/vs-mesa (vs_mesa --tally FILE...): each run's own
+// The speed targets over many runs of bench/vs-mesa (vs_mesa --tally FILE...): each run's own
 // table of targets (issue_targets.h, the end of its output) read back, and for every figure in how
 // many runs it was met. On a shared host one run is a sample: this shows which figures a run meets
 // nearly always, which depend on the host, and — for two threads / one — how that follows the
@@ -175,7 +175,7 @@ class TargetTally {
   int runs() const { return int(runs_.size()); }
 
   std::string text() const {
-    std::string out = "Issue 7's targets over " + std::to_string(runs_.size()) +
+    std::string out = "The speed targets over " + std::to_string(runs_.size()) +
                       " runs: in how many runs each figure was met\n" + targetLine("target", columns_);
     for (const std::string& key : order_) out += targetLine(counts_.at(key).label, cellsOf(key));
     if (twoThreadRuns_ > 0)

@@ -1,4 +1,4 @@
-// bench/vs-mesa (issue 7): the same frames through Mesa's software rasterizers (OSMesa, softpipe
+// bench/vs-mesa: the same frames through Mesa's software rasterizers (OSMesa, softpipe
 // and llvmpipe) and through shadowref, side by side in one run; the ratios, the determinism check
 // across thread counts, and the cost against the number of houses and lights.
 //
@@ -25,12 +25,12 @@
 // meet different hosts: this one's speed drifts by 10-20 % within minutes. It is set against the
 // machine's capacity for two busy threads: the 1-thread frame rendered by two processes at once,
 // in the same alternating rounds; and against the time a cache line takes between the cores,
-// measured before every 2-thread run. A run ends with issue 7's targets checked against its own
+// measured before every 2-thread run. A run ends with the speed targets checked against its own
 // figures (issue_targets.h).
 //
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling | --series]
 //   vs_mesa --agreement [--images DIR]
-//   vs_mesa --tally RUN.txt...       (issue 7's targets over saved runs: target_tally.h)
+//   vs_mesa --tally RUN.txt...       (the targets over saved runs: target_tally.h)
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -1069,7 +1069,7 @@ void printCrossCore(const char* when, std::ofstream& csv) {
       << ",,,,\"ns for a cache line to pass from one core to the other\"\n";
 }
 
-// Issue 7's targets against this run's figures (issue_targets.h), like for like: shadowref at
+// The speed targets against this run's figures (issue_targets.h), like for like: shadowref at
 // least as fast as llvmpipe at the same thread count and at least 10x softpipe, in both lighting
 // pairs; two threads at least 1.8x one, judged on frames at two threads and one in turn in each of
 // a cell's runs (Config::inTurn: the same host for both counts), with the same ratio from separate
@@ -1122,7 +1122,7 @@ void printTargets(const std::vector<SceneCase>& cases, const std::vector<std::ve
   }
   table.information("unequal: per pixel, x llvmpipe fixed 1t", ratio(kLl1, kSr1));
   table.information("unequal: per pixel, x softpipe fixed", ratio(kSoft, kSr1));
-  std::printf("\nIssue 7's targets in this run, like for like (figures cut to the decimals shown; rows\n"
+  std::printf("\nThe speed targets in this run, like for like (figures cut to the decimals shown; rows\n"
               "without a verdict are information)%s\n%s",
               fits ? "" : "; cost against houses and lights not measured (--no-scaling)", table.text().c_str());
 }
@@ -1141,7 +1141,7 @@ int runDriver(const Settings& s) {
   printCrossCore("", csv);
   if (s.seriesOnly) {
     const ScalingFits f = scaling(s, csv);
-    std::printf("\nR2 of the lines, shadowref: houses %.3f (1 thread) %.3f (2 threads), lights %.3f %.3f (issue 7: %.2f)\n",
+    std::printf("\nR2 of the lines, shadowref: houses %.3f (1 thread) %.3f (2 threads), lights %.3f %.3f (target: %.2f)\n",
                 f.houses1, f.houses2, f.lights1, f.lights2, kLinearR2);
     std::printf("\nCSV: %s\n", s.csvPath.c_str());
     return 0;

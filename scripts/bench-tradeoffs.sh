@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The trade, measured (issue 6): builds the bench program bench/tradeoffs (the target tradeoffs of
+# The trade, measured: builds the bench program bench/tradeoffs (the target tradeoffs of
 # a shadowref build), runs every configuration (ten minutes or so on a 2-core machine), and
 # writes bench/results/tradeoffs.csv, docs/tradeoffs.md and docs/images/tradeoff-*.png.
 #   bash scripts/setup.sh build && bash scripts/bench-tradeoffs.sh [BUILD_DIR] [tradeoffs options...]
@@ -55,7 +55,7 @@ if [ -s bench/results/series-map-size.dat ] && [ "$(wc -l < bench/results/series
 $terminal
 set output "docs/images/tradeoff-map-size.png"
 set grid; set key top center
-set title "outdoor: standard shadow map and TSM against map size (002 §6.1)"
+set title "outdoor: standard shadow map and TSM against map size [Hempe 2004, §6.1]"
 set logscale x 2; set xlabel "map size (texels per side)"
 set ylabel "wrongly shadowed or lit pixels (%)"
 set y2label "median CPU time per frame (ms)"; set y2tics; set logscale y2; set ytics nomirror
@@ -70,7 +70,7 @@ if [ "$(grep -vc '—' bench/results/series-houses.dat)" -gt 1 ]; then
 $terminal
 set output "docs/images/tradeoff-houses.png"
 set grid; set key top left; set datafile missing "—"
-set title "city, one light: time per frame against houses (000 §5.4.1)"
+set title "city, one light: time per frame against houses [Kuhn 2016, §5.4.1]"
 set xlabel "houses"; set ylabel "median CPU time per frame (ms)"
 plot "bench/results/series-houses.dat" using 1:2 with linespoints lw 2 title "random models, no shadows", \
      "" using 1:3 with linespoints lw 2 title "random models, z-pass", \
@@ -83,7 +83,7 @@ if [ "$(grep -vc '—' bench/results/series-lights.dat)" -gt 1 ]; then
 $terminal
 set output "docs/images/tradeoff-lights.png"
 set grid; set key top left; set datafile missing "—"
-set title "city, 16 x Haus02: time per frame against lights (000 §5.4.1)"
+set title "city, 16 x Haus02: time per frame against lights [Kuhn 2016, §5.4.1]"
 set xlabel "lights"; set ylabel "median CPU time per frame (ms)"
 plot "bench/results/series-lights.dat" using 1:2 with linespoints lw 2 title "no shadows", \
      "" using 1:3 with linespoints lw 2 title "z-pass"

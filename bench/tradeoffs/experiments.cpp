@@ -41,8 +41,8 @@ class Builder {
   std::vector<Experiment> list_;
 };
 
-// 000 §5.4.1, first test: one light, more and more houses; random models (shadows only in the
-// document) and one model, Haus01 (= model 0), with and without shadows.
+// [Kuhn 2016, §5.4.1], first test: one light, more and more houses; random models (shadows only in
+// the document) and one model, Haus01 (= model 0), with and without shadows.
 void houses(Builder& b) {
   for (int n : {8, 16, 32, 64, 100}) {
     const std::string h = "generator.houses=" + std::to_string(n);
@@ -54,7 +54,7 @@ void houses(Builder& b) {
   }
 }
 
-// 000 §5.4.1, second test: 16 houses of one model (Haus02 = model 1), 1 … 9 lights.
+// [Kuhn 2016, §5.4.1], second test: 16 houses of one model (Haus02 = model 1), 1 … 9 lights.
 void lights(Builder& b) {
   for (int n = 1; n <= 9; ++n)
     for (const char* method : {"none", "zpass"})
@@ -63,8 +63,8 @@ void lights(Builder& b) {
              "generator.lights=" + std::to_string(n)});
 }
 
-// 000 §5.4.2: z-pass against z-fail (and auto) on the room, the pumpkins and a city of 64 equal
-// houses (Haus02). `none` shows what the shadows cost and how wrong their absence is.
+// [Kuhn 2016, §5.4.2]: z-pass against z-fail (and auto) on the room, the pumpkins and a city of 64
+// equal houses (Haus02). `none` shows what the shadows cost and how wrong their absence is.
 void counting(Builder& b) {
   for (const char* method : {"none", "zpass", "zfail", "auto"}) {
     b.add("counting", "room", "room", method, {}, "room");
@@ -74,9 +74,10 @@ void counting(Builder& b) {
   }
 }
 
-// 000 §5.3 / §4.2 and 002 §4.2: hard shadows against lights spread over a square (8 extra), a sphere
-// (14 extra) and 16 lights on the edge of a square area light, accumulated (002) or as volumes.
-// The light is lowered to y = 2.6 so that a sphere of radius 0.25 around it stays in the room.
+// [Kuhn 2016, §5.3 / §4.2] and [Hempe 2004, §4.2]: hard shadows against lights spread over a square
+// (8 extra), a sphere (14 extra) and 16 lights on the edge of a square area light, accumulated
+// ([Hempe 2004]) or as volumes. The light is lowered to y = 2.6 so that a sphere of radius 0.25
+// around it stays in the room.
 void soft(Builder& b) {
   const double s = 0.25;
   const std::string sp = std::to_string(s), side = std::to_string(2 * s);
@@ -107,7 +108,7 @@ void soft(Builder& b) {
   b.setSoftSpacing("soft", s);
 }
 
-// 002 §6.1: standard shadow map and TSM, 128² … 4096², on the outdoor scene.
+// [Hempe 2004, §6.1]: standard shadow map and TSM, 128² … 4096², on the outdoor scene.
 void mapSize(Builder& b) {
   b.add("map_size", "outdoor", "no shadows", "none", {}, "outdoor");
   for (int n : {128, 256, 512, 1024, 2048, 4096})
@@ -124,8 +125,8 @@ void pcf(Builder& b) {
   }
 }
 
-// Polygon offset (002 §3.2: the default 1.1 / 4), none, only units, stronger; back faces only;
-// a constant bias in the comparison instead.
+// Polygon offset ([Hempe 2004, §3.2]: the default 1.1 / 4), none, only units, stronger; back faces
+// only; a constant bias in the comparison instead.
 void bias(Builder& b) {
   struct Choice {
     const char* label;
@@ -157,8 +158,8 @@ void depth(Builder& b) {
   }
 }
 
-// P_inf against a finite far plane. Shadow volumes always render with P_inf (000 §3.3), so the
-// choice reaches the shadow-map methods only; the outdoor scene's own far plane is 300.
+// P_inf against a finite far plane. Shadow volumes always render with P_inf ([Kuhn 2016, §3.3]), so
+// the choice reaches the shadow-map methods only; the outdoor scene's own far plane is 300.
 void farPlane(Builder& b) {
   for (const char* far : {"300", "infinite"})
     for (const char* method : {"shadowmap", "tsm"})

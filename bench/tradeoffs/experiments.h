@@ -1,6 +1,6 @@
-// The configurations the trade-off bench measures: the documents' experiments (000 §5.3, §5.4.1,
-// §5.4.2; 002 §6.1) and the choices SPEC.md says a user trades (map size, PCF, bias, depth format,
-// far plane). Each is a scene file, -D overrides and a shadow method.
+// The configurations the trade-off bench measures: the documents' experiments
+// ([Kuhn 2016, §5.3, §5.4.1, §5.4.2]; [Hempe 2004, §6.1]) and the choices a user trades (map size,
+// PCF, bias, depth format, far plane). Each is a scene file, -D overrides and a shadow method.
 #pragma once
 
 #include <string>

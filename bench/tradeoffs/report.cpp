@@ -35,7 +35,7 @@ const Row* find(const std::vector<Row>& rows, const std::string& group, const st
 }
 
 // Frame-rate loss of `slow` against `fast`: 1 - fps_slow / fps_fast = 1 - t_fast / t_slow, as
-// 000 §5.4.1 states its "Verlustrate".
+// [Kuhn 2016, §5.4.1] states its "Verlustrate".
 std::string loss(const Row* fast, const Row* slow) {
   if (!fast || !slow || !fast->timing.ok || !slow->timing.ok) return "—";
   return fixed(100.0 * (1.0 - fast->timing.medianMs / slow->timing.medianMs), 0) + " %";
@@ -112,7 +112,7 @@ void writePlotData(const std::string& directory, const std::vector<Row>& rows) {
       if (r->pareto) front << line;
     }
   }
-  // Error against map size, standard and trapezoidal (002 §6.1).
+  // Error against map size, standard and trapezoidal ([Hempe 2004, §6.1]).
   std::ofstream sizes(directory + "/series-map-size.dat");
   sizes << "# map_size sm_ms sm_wrong_percent tsm_ms tsm_wrong_percent\n";
   for (int n : {128, 256, 512, 1024, 2048, 4096}) {
@@ -122,7 +122,7 @@ void writePlotData(const std::string& directory, const std::vector<Row>& rows) {
     sizes << n << ' ' << fixed(sm->timing.medianMs, 3) << ' ' << fixed(100 * sm->error.wrong, 4) << ' '
           << fixed(tsm->timing.medianMs, 3) << ' ' << fixed(100 * tsm->error.wrong, 4) << '\n';
   }
-  // Time against house count (000 §5.4.1).
+  // Time against house count ([Kuhn 2016, §5.4.1]).
   std::ofstream houses(directory + "/series-houses.dat");
   houses << "# houses random_none random_zpass single_none single_zpass (ms)\n";
   for (int n : {8, 16, 32, 64, 100}) {
@@ -165,7 +165,7 @@ std::vector<const Row*> group(const std::vector<Row>& rows, const std::string& g
 }
 
 void housesSection(Markdown& md, const std::vector<Row>& rows) {
-  md.text() << "## Shadows against the number of houses (000 §5.4.1)\n\n"
+  md.text() << "## Shadows against the number of houses ([Kuhn 2016, §5.4.1])\n\n"
                "One light; z-pass volumes (the city's camera is outside every volume). \"Loss\" is the documents' "
                "*Verlustrate*: 1 − fps with shadows / fps without. The document measured its loss with one model "
                "(Haus01, our model 0) and the random city with shadows only.\n\n";
@@ -180,13 +180,13 @@ void housesSection(Markdown& md, const std::vector<Row>& rows) {
                     err(sn, &ShadowError::shadowed), sz && sz->timing.ok ? mib(sz->timing.peakRssKiB) : "—"});
   }
   md.table({"houses", "random: none ms", "random: z-pass ms", "random: loss", "Haus01: none ms", "Haus01: z-pass ms",
-            "Haus01: loss", "loss in 000 §5.4.1", "random: z-pass wrong", "Haus01: z-pass wrong",
+            "Haus01: loss", "loss in [Kuhn 2016, §5.4.1]", "random: z-pass wrong", "Haus01: z-pass wrong",
             "Haus01: shadowed (none's error)", "Haus01 z-pass peak MiB"},
            body);
 }
 
 void lightsSection(Markdown& md, const std::vector<Row>& rows) {
-  md.text() << "## Shadows against the number of lights (000 §5.4.1)\n\n"
+  md.text() << "## Shadows against the number of lights ([Kuhn 2016, §5.4.1])\n\n"
                "16 houses of one model (Haus02, our model 1), z-pass volumes, lights `sun0` … `sun8` of the city "
                "generator. Loss as above; the error counts every (pixel, light) pair.\n\n";
   const std::map<int, std::string> paper = {{4, "18 %"}, {9, "53 %"}};
@@ -198,13 +198,13 @@ void lightsSection(Markdown& md, const std::vector<Row>& rows) {
                     err(zp, &ShadowError::wrong), err(none, &ShadowError::shadowed),
                     zp && zp->timing.ok ? mib(zp->timing.peakRssKiB) : "—"});
   }
-  md.table({"lights", "none ms", "z-pass ms", "loss (ours)", "loss in 000 §5.4.1", "z-pass wrong",
+  md.table({"lights", "none ms", "z-pass ms", "loss (ours)", "loss in [Kuhn 2016, §5.4.1]", "z-pass wrong",
             "shadowed (none's error)", "z-pass peak MiB"},
            body);
 }
 
 void countingSection(Markdown& md, const std::vector<Row>& rows) {
-  md.text() << "## z-pass against z-fail and auto (000 §5.4.2)\n\n"
+  md.text() << "## z-pass against z-fail and auto ([Kuhn 2016, §5.4.2])\n\n"
                "\"More frames\" is fps(z-pass) / fps(z-fail) − 1 = t(z-fail) / t(z-pass) − 1, the documents' measure. "
                "\"wrong\" is the fraction of compared pixels whose stencil verdict differs from the oracle's shadow ray; "
                "\"off edges\" leaves out pixels within one pixel of a contour or shadow outline, where a one-pixel "
@@ -221,20 +221,20 @@ void countingSection(Markdown& md, const std::vector<Row>& rows) {
                     err(zp, &ShadowError::wrongCore), err(zf, &ShadowError::wrong), err(zf, &ShadowError::wrongCore),
                     err(au, &ShadowError::wrongCore), err(none, &ShadowError::shadowed)});
   }
-  md.table({"scene", "none ms", "z-pass ms", "z-fail ms", "auto ms", "z-pass more frames (ours)", "000 §5.4.2",
+  md.table({"scene", "none ms", "z-pass ms", "z-fail ms", "auto ms", "z-pass more frames (ours)", "[Kuhn 2016, §5.4.2]",
             "z-pass wrong", "z-pass wrong off edges", "z-fail wrong", "z-fail wrong off edges", "auto wrong off edges",
             "shadowed (none's error)"},
            body);
 }
 
 void softSection(Markdown& md, const std::vector<Row>& rows) {
-  md.text() << "## Soft shadows (000 §5.3, §4.2; 002 §4.2)\n\n"
+  md.text() << "## Soft shadows ([Kuhn 2016, §5.3, §4.2]; [Hempe 2004, §4.2])\n\n"
                "The room with its light lowered to y = 2.6. References: *square* = the area light "
                "[−0.25, 0.25]² in the light's horizontal plane (square_y spacing 0.25 spans it; area16 with side 0.5 "
                "runs round its edge), *sphere* = the sphere of radius 0.25 (sphere14's points lie on it); each by "
                "shadow rays to its sample points from the oracle's surface point of every pixel. MAE is the mean "
                "absolute difference of the light's visibility in [0, 1]; \"× hard\" the time against hard z-fail. "
-               "000 §5.3 reports 64 → 18 fps for 8 extra lights: 3.6× the time.\n\n";
+               "[Kuhn 2016, §5.3] reports 64 → 18 fps for 8 extra lights: 3.6× the time.\n\n";
   const Row* hard = find(rows, "soft", "hard (vs square)", "zfail");
   std::vector<std::vector<std::string>> body;
   for (const Row* r : group(rows, "soft")) {
@@ -249,9 +249,9 @@ void softSection(Markdown& md, const std::vector<Row>& rows) {
 }
 
 void mapSizeSection(Markdown& md, const std::vector<Row>& rows) {
-  md.text() << "## Shadow-map and TSM resolution (002 §6.1)\n\n"
+  md.text() << "## Shadow-map and TSM resolution ([Hempe 2004, §6.1])\n\n"
                "The outdoor scene (directional light, far plane 300), polygon offset 1.1 / 4, nearest sampling. "
-               "002 §6.1: TSM at 256² looks like a standard map at 1024².\n\n";
+               "[Hempe 2004, §6.1]: TSM at 256² looks like a standard map at 1024².\n\n";
   std::vector<std::vector<std::string>> body;
   const Row* none = find(rows, "map_size", "no shadows", "none");
   if (none)
@@ -317,8 +317,8 @@ void writeMarkdown(const std::string& path, const RunInfo& info, const std::vect
   std::ofstream out(path);
   Markdown md(out);
   out << "# The trade, measured\n\n"
-         "What each choice costs in time and memory and what it buys in accuracy, measured on this renderer "
-         "(issue 6). Generated by `scripts/bench-tradeoffs.sh` (program `bench/tradeoffs/`); every number below is "
+         "What each choice costs in time and memory and what it buys in accuracy, measured on this renderer. "
+         "Generated by `scripts/bench-tradeoffs.sh` (program `bench/tradeoffs/`); every number below is "
          "in [`bench/results/tradeoffs.csv`](../bench/results/tradeoffs.csv). Do not edit the tables by hand: run "
          "the script.\n\n"
          "## How it was measured\n\n";
@@ -377,14 +377,14 @@ void writeMarkdown(const std::string& path, const RunInfo& info, const std::vect
   plainSection(md, rows, "pcf", "Percentage-closer filtering",
                "k × k PCF on the outdoor scene, standard map 1024² and TSM 256². A hard reference: PCF's "
                "fractional edges count by how far they are from 0 or 1 (MAE).");
-  plainSection(md, rows, "bias", "Depth bias (002 §3.2)",
+  plainSection(md, rows, "bias", "Depth bias ([Hempe 2004, §3.2])",
                "Polygon offset in the map pass (factor, units), back faces only, or a constant bias added in the "
                "comparison; standard 1024², TSM 256². Too little bias shows as shadow acne (lit surfaces called "
                "shadowed), too much as light leaking at contact (peter-panning).");
   plainSection(md, rows, "depth", "float32 against 24-bit depth",
                "`image.depth=unorm24` for the camera's depth buffer.");
   plainSection(md, rows, "far", "P_inf against a finite far plane",
-               "Shadow volumes always render with P_inf (000 §3.3), so the far plane reaches only the shadow-map "
+               "Shadow volumes always render with P_inf ([Kuhn 2016, §3.3]), so the far plane reaches only the shadow-map "
                "methods here; `docs/numerics.md` measures the depth precision P_inf costs.");
   paretoSection(md, rows);
   std::ifstream notes("bench/tradeoffs/notes.md");

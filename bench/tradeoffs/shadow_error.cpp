@@ -47,7 +47,8 @@ bool isVolumeMethod(ShadowMethod m) {
 }
 
 // Shadow volumes: a pixel sees an (expanded) light where its stencil count is 0; a soft light's
-// visibility is the share of its lights that see it (each carries colour / count, 000 §3.6).
+// visibility is the share of its lights that see it (each carries colour / count,
+// [Kuhn 2016, §3.6]).
 std::vector<Plane> volumeVisibility(const Scene& scene, ShadowMethod method, int threads) {
   FrameOptions options;
   options.method = method;

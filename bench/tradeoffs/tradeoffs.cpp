@@ -1,4 +1,4 @@
-// The trade, measured (issue 6): every configuration of experiments.cpp timed in its own child
+// The trade, measured: every configuration of experiments.cpp timed in its own child
 // process (median time per frame, peak memory) and compared with ground truth in this one (the
 // ray-cast oracle for hard shadows, an area-light reference for soft ones).
 //

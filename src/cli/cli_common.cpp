@@ -17,9 +17,9 @@ std::optional<Scene> loadSceneOrReport(const SceneArgs& args) {
     LoadOptions options;
     options.overrides = args.overrides;
     if (args.scene.empty()) {
-      // The built-in default is the room of 000 Abb. 5.1 with z-fail shadow volumes (scenes/room.yaml
-      // says the same at length), as a two-line scene, so that -D overrides work on it exactly as
-      // on a file.
+      // The built-in default is the room of [Kuhn 2016, Fig. 5.1] with z-fail shadow volumes
+      // (scenes/room.yaml says the same at length), as a two-line scene, so that -D overrides work
+      // on it exactly as on a file.
       return loadSceneFromString("generator: {type: room}\nshadow: {method: zfail}\n", "<builtin:room>", options);
     }
     return loadScene(args.scene, options);

@@ -14,7 +14,7 @@ class Validator;
 
 namespace shadowref::cli {
 
-// SPEC.md §5: 0 success, 1 a failed render or comparison, 2 bad usage or bad input.
+// Exit status: 0 success, 1 a failed render or comparison, 2 bad usage or bad input.
 enum ExitCode : int { kSuccess = 0, kFailed = 1, kBadInput = 2 };
 
 struct SceneArgs {

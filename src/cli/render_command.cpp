@@ -137,8 +137,8 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_option("--dump-region", args.dumpRegion, "x,y,w,h: print the stencil counts of that region per light "
                                                        "(row 0 is the bottom)");
   render->add_option("--view", args.view,
-                     "Draw the shadow volumes over the frame: 'volumes' (front faces red, back faces blue, 003) or "
-                     "'volumes-overlay' (translucent red, 004)")
+                     "Draw the shadow volumes over the frame: 'volumes' (front faces red, back faces blue, [SV slides]) or "
+                     "'volumes-overlay' (translucent red, [DSS article])")
       ->check(CLI::IsMember({"volumes", "volumes-overlay"}));
   render->add_option("--pixel-history", args.pixelHistory, "x,y: print every fragment that touched that pixel");
 }

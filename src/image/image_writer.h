@@ -1,4 +1,4 @@
-// Writing a Framebuffer to files (SPEC.md §5): PNG for looking at, multi-channel EXR for checking.
+// Writing a Framebuffer to files: PNG for looking at, multi-channel EXR for checking.
 // Every writer is atomic (see atomic_write.h): the file is complete or absent, never half-written.
 // Failures throw std::runtime_error with the path and the reason.
 //

@@ -1,6 +1,7 @@
-// Teaching views of the stencil buffer (SPEC.md §5, issue 4 "--dump stencil", "--dump-region"):
+// Teaching views of the stencil buffer (--dump stencil, --dump-region):
 // a false-colour picture with a legend, and the counts of a region as a numeric grid. They answer
-// "what count does this pixel hold?" — the count that decides whether it is in shadow (000 §3.2).
+// "what count does this pixel hold?" — the count that decides whether it is in shadow
+// ([Kuhn 2016, §3.2]).
 #pragma once
 
 #include <array>
@@ -16,7 +17,8 @@ namespace shadowref {
 
 struct StencilViewOptions {
   // Read the 8-bit value as signed: 128..255 are -128..-1. Wrapping ops (INCR_WRAP/DECR_WRAP) make
-  // a count of -1 the value 255, e.g. z-pass with the camera inside a volume (000 Abb. 3.3).
+  // a count of -1 the value 255, e.g. z-pass with the camera inside a volume
+  // ([Kuhn 2016, Fig. 3.3]).
   bool signedCounts = false;
   int pixelScale = 1;  // each stencil pixel becomes pixelScale x pixelScale picture pixels
   int glyphScale = 2;  // legend digits are 3x5 glyphs scaled by this

@@ -1,6 +1,6 @@
-// The accumulation buffer operations of glAccum (GL 2.1 §4.2.4; 002 §4.2.2). The operations
-// read and write whole pixels of the colour buffer, limited by the scissor box; RETURN writes
-// through the colour mask and clamps like any colour write.
+// The accumulation buffer operations of glAccum ([GL 2.1, §4.2.4]; [Hempe 2004, §4.2.2]). The
+// operations read and write whole pixels of the colour buffer, limited by the scissor box; RETURN
+// writes through the colour mask and clamps like any colour write.
 #pragma once
 
 #include "raster/framebuffer.h"

@@ -3,14 +3,10 @@
 //
 // One band reads its draw's setups in order and rasterizes all of them: the hardware prefetcher
 // sees a stream and runs ahead. Cut into bands, a band reads only the setups that meet its rows —
-// a scattered part of a few megabytes of setups (the pumpkins' 27 000, 300 bytes each) — and waits
-// for each from the shared cache. Timed in one process, frames alternating (round 32): at one
-// thread six bands took the pumpkins' lit pass 11 % longer than one band (1.56 against 1.41 ms),
-// a second walk over the bounds alone cost nothing, and one that also read each setup's first
-// line cost as much again. With each setup asked for kAhead setups early, the pumpkins' ambient
-// pass — nineteen bands at one thread, to stay in the cache while it clears — took 2.09 ms against
-// 2.28 at one thread, and the three passes' bands at two threads 1.7-2.0 % less time (the lit
-// pass 3-7 %), for about 1 % more instructions. Which setups are rasterized, and in what order, is
+// a scattered part of a few megabytes of setups (300 bytes each) — and waits
+// for each from the shared cache, so that several bands at one thread take longer than one band.
+// So each setup is asked for kAhead setups before it is rasterized: the wait is hidden behind the
+// setups before it, for a few more instructions. Which setups are rasterized, and in what order, is
 // unchanged: only when their bytes arrive.
 #pragma once
 

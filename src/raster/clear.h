@@ -1,5 +1,6 @@
 // glClear for each buffer, with GL's semantics: the scissor box limits it, and the colour mask,
-// depth mask and (front) stencil write mask apply (GL 2.1 §4.2.3). Clearing allocates the buffer.
+// depth mask and (front) stencil write mask apply ([GL 2.1, §4.2.3]). Clearing allocates the
+// buffer.
 //
 // A clear is made in two steps — prepareClear, which makes the buffers, and clearRows, which
 // fills some of the rows — so that a renderer can fill each band of rows on the thread that draws

@@ -3,7 +3,7 @@
 // any of their draws waits. A shadow volume pass clips ten thousand triangles against the guard
 // band (their far ends are points at infinity); a std::deque of 160-byte vertices gave every three
 // of them a node of their own, allocated on an assembly thread and freed on the flushing one —
-// the largest serial cost of the pumpkins' frame at two threads. Here they go into blocks of
+// a serial cost that grows with the volume's size. Here they go into blocks of
 // kBlockVertices that are kept when the store is emptied, for the next pass.
 #pragma once
 

@@ -50,7 +50,7 @@ ClipVertex intersect(Plane plane, double g, const ClipVertex& inside, double dIn
   return r;
 }
 
-// One Sutherland–Hodgman step.
+// One Sutherland–Hodgman step [Sutherland & Hodgman 1974].
 void clipAgainst(Plane plane, double g, const std::vector<ClipVertex>& in, int varyingCount,
                  std::vector<ClipVertex>& out) {
   out.clear();

@@ -1,4 +1,4 @@
-// Homogeneous clipping before the perspective divide (SPEC.md §1; GL 2.1 §2.12).
+// Homogeneous clipping before the perspective divide ([GL 2.1, §2.12]).
 //
 // Planes, in this fixed order: near z >= -w, far z <= w (optional), a guard band
 // |x|, |y| <= G w that keeps window coordinates inside the fixed-point range of the rasterizer,

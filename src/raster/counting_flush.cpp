@@ -7,10 +7,10 @@
 // stencil of its own, and the sum of the stencils is the byte one thread counting in submission
 // order makes. Cut into bands of rows as a shaded pass is (three a thread, of shrinking shares,
 // taken in order), every volume side that crosses a band's edge is set up again for each band it
-// reaches (at two threads the city's volume pass started 3.6 times as many triangles as at one: 6 %
-// more instructions in the frame). So a counting flush goes either by runs of whole triangles
-// (countByTriangles: the city's), or by one band a thread of equal estimated work, the last of a
-// band's setups counted by whichever thread is free (countByBands: the pumpkins' and the room's).
+// reaches, which costs most where many setups cross each row. So a counting flush
+// goes either by runs of whole triangles (countByTriangles: many setups across a row), or by one
+// band a thread of equal estimated work, the last of a band's setups counted by whichever thread is
+// free (countByBands: the rest).
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
@@ -65,16 +65,10 @@ bool Renderer::countsInAnyOrder() const {
 
 bool Renderer::countsByTriangles() const {
   // Cut into bands, each setup that crosses a band's edge is started again there (about 1200
-  // instructions); counted by triangles, a thread's rows are no longer in its cache. (The figures
-  // below are against three bands a thread, before countByBands.) Runs of
-  // triangles pay where more setups cross an average row than it has pixels: the city's volume
-  // pass (3603 setups of 211 rows each, 1190 across a row of 800 pixels: 3 % quicker at two
-  // threads, 5 % of the frame's instructions fewer) — not the pumpkins' (11700 small ones, 600
-  // across: 1.4 % slower) nor the room's (382 large ones, 134 across: its volume pass 30 % slower).
-  // Since the sum goes 32 bytes a step (round 31) the pumpkins by triangles take 2.5 % fewer
-  // instructions a frame at two threads, but their volume pass was slower in 21 of 30 alternating
-  // rounds (by triangles each thread reads the whole screen's depth, not its band's), so the line
-  // stays.
+  // instructions); counted by triangles, a thread's rows are no longer in its cache, and each
+  // thread reads the whole screen's depth, not its band's. Runs of triangles pay only where more
+  // setups cross an average row than it has pixels: then the setups started again in every band
+  // cost more than the cache misses.
   // Every few setups, for a sample of about kSampledSetups: the rows each covers in its region.
   size_t setups = 0;
   for (const PendingDraw& d : pending_) setups += d.count;
@@ -96,8 +90,8 @@ bool Renderer::countsByTriangles() const {
 }
 
 // The pending draws' setups cut into `runs` runs of about the same length, a draw between runs
-// where it is long (the pumpkins' lantern) and many short ones in one run (the city's 387 volume
-// draws): countPieces_, and countRunFirst_ for where each run's pieces start; returns the count.
+// where it is long and many short ones in one run: countPieces_, and countRunFirst_ for where each
+// run's pieces start; returns the count.
 int Renderer::cutIntoRuns(size_t runs) {
   size_t total = 0;
   for (const PendingDraw& d : pending_) total += d.count;
@@ -228,10 +222,8 @@ void Renderer::countEntries(const std::vector<CountEntry>& entries, uint32_t fir
 // the front, into the framebuffer's stencil, and then, while any band has setups left, takes the
 // last of them — from the band with the most left — into a stencil of its own, added to the
 // framebuffer's at the end. A setup is started in every band it meets: at two threads in two bands
-// at most, where the shaded passes' six cut a volume side up to six times (the pumpkins' frame at
-// two threads 144.3 -> 141.4 M instructions, 135.9 at one; their volume pass 3-6 % quicker, timed
-// frame by frame in one process), and the threads end together without small bands at the end
-// (the pass's run idle 0.0 %, against 1.6 %).
+// at most, where the shaded passes' six cut a volume side up to six times, and the threads end
+// together without small bands at the end.
 void Renderer::countByBands(int minY, int maxY) {
   clearsNow();  // before every draw: the counts start from the cleared stencil
   const int bands = splitIntoBands(minY, maxY, threads(), RowWork::Shares::Equal);
@@ -269,9 +261,8 @@ void Renderer::countByBands(int minY, int maxY) {
       const auto [b0, b1] = rowsOf(from);
       const std::vector<CountEntry>& entries = countBands_[size_t(from)].entries;
       countEntries(entries, first, last, b0, b1, extra[size_t(task)].data(), mine.stats);
-      // The sum adds only the rows these setups reach, not the whole band's: the room's volume
-      // pass at two threads summed 438 rows a frame, now 90-152 (the pumpkins' last volume sides
-      // reach across their band: 424 either way).
+      // The sum adds only the rows these setups reach, not the whole band's: the last setups of a
+      // band often cover only a few of its rows.
       for (uint32_t k = first; k < last; ++k) {
         const SetupBounds& b = pendingBounds_[entries[k].setup];
         mine.minY = std::min(mine.minY, std::max(b.minY, b0));

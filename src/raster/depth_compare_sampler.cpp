@@ -40,7 +40,8 @@ int nearestTexel(double coordinate, int size) {
 double DepthCompareSampler::compareTexel(int x, int y, double r) const {
   x = std::clamp(x, 0, texture->width - 1);
   y = std::clamp(y, 0, texture->height - 1);
-  // Depth textures compare in float, as they are stored; r is clamped to [0, 1] (GL 2.1 §3.8.14).
+  // Depth textures compare in float, as they are stored; r is clamped to [0, 1]
+  // ([GL 2.1, §3.8.14]).
   const float rf = float(std::clamp(r, 0.0, 1.0));
   const float d = texture->at(x, y);
   bool pass = false;

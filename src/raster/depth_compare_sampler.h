@@ -1,7 +1,8 @@
-// The shadow-map texture unit (SPEC.md §1; 002 §3.1, §5.1.2): a depth texture looked up with
+// The shadow-map texture unit ([Hempe 2004, §3.1, §5.1.2]): a depth texture looked up with
 // projective coordinates (s, t, r, q), nearest sampling, clamp to edge, and a depth comparison
 // of r/q against the stored depth (GL_COMPARE_R_TO_TEXTURE, func LEQUAL by default). A passing
-// comparison gives 1, a failing one the compare-fail value (ARB_shadow_ambient; 002 uses 0.4).
+// comparison gives 1, a failing one the compare-fail value (ARB_shadow_ambient; [Hempe 2004]
+// uses 0.4).
 #pragma once
 
 #include <bit>

@@ -1,5 +1,5 @@
-// Per-fragment operations in OpenGL order (GL 2.1 §4.1): scissor -> stencil test -> depth test ->
-// stencil update -> blend -> masked writes. One small function per operation, so the answer to
+// Per-fragment operations in OpenGL order ([GL 2.1, §4.1]): scissor -> stencil test -> depth test
+// -> stencil update -> blend -> masked writes. One small function per operation, so the answer to
 // "what does DECR_WRAP do" is in one place.
 #pragma once
 

@@ -70,7 +70,7 @@ double FragmentProcessor::fragmentDepth(const TriangleSetup& t, int x, int y) co
 
 void FragmentProcessor::interpolateVaryings(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2,
                                             double* out) const {
-  // Perspective-correct: weights lambda_i / w_i, normalised (GL 2.1 §3.5.1, eq. 3.6).
+  // Perspective-correct: weights lambda_i / w_i, normalised ([GL 2.1, §3.5.1, eq. 3.6]).
   const double b0 = double(e0) * t.v[0].invW;
   const double b1 = double(e1) * t.v[1].invW;
   const double b2 = double(e2) * t.v[2].invW;
@@ -115,7 +115,7 @@ void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_
   const uint32_t zCode = fb_.depthCodec().encode(z);
   if constexpr (watched) event.depth = fb_.depthCodec().decode(zCode);
 
-  // Stencil test, then the depth test, then the stencil update (GL 2.1 §4.1.5, §4.1.6).
+  // Stencil test, then the depth test, then the stencil update ([GL 2.1, §4.1.5, §4.1.6]).
   const StencilFaceState& sface = state_.stencil[t.facing];
   uint8_t* stencil = usesStencil_ ? &fb_.stencil()[at] : nullptr;
   if (stencil && !stencilTest(sface, *stencil)) {
@@ -553,8 +553,7 @@ const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int b
   const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
   if (y1 - y0 + 1 < kSlopeRows || bufferWidth < 8) return nullptr;
   // A band that cuts the triangle: only the columns it covers in these rows. A shadow volume's
-  // side reaches across the screen, and a band of rows holds a stretch of it (the pumpkins' frame
-  // at two threads made 2.6 times the table entries of one thread).
+  // side reaches across the screen, and a band of rows holds a stretch of it.
   const bool cut = y0 > t.minY || y1 < t.maxY;
   const ColumnRange columns = cut ? columnsInRows(t, region, y0, y1)
                                   : ColumnRange{std::max(t.minX, region.x), std::min(t.maxX, region.x + region.width - 1)};
@@ -611,8 +610,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
   } else {
     const double* slopes = columnDepthParts(t, region, width);
     // Inlined into the row walk: GCC called it once a row, saving and restoring six registers and
-    // reloading the closure each time (city-64: 3 % of the frame's instructions, 4.5 % of its
-    // volume pass's time).
+    // reloading the closure each time — a cost paid per row of every span.
     auto spanRow = [&, depth, hasDepth, width, slopes](int y, int xl, int xr) __attribute__((always_inline)) {
       const size_t rowStart = size_t(y) * size_t(width);
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
@@ -780,8 +778,8 @@ void chunkWeights(const TriangleSetup& t, const int64_t e[3], int x, int xl, int
 }
 
 // Chunks with at least this many survivors are shaded at once; fewer wait for the triangle's next
-// ones (FragmentProcessor::Waiting). Copying a full chunk into the waiting batch cost the room's
-// long spans 2 % of their frame's instructions and gained them nothing.
+// ones (FragmentProcessor::Waiting). Copying a chunk this full into the waiting batch would
+// cost a copy per fragment and gain nothing.
 constexpr int kShadeAtOnce = 32;
 
 }  // namespace
@@ -802,7 +800,7 @@ void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n
     return;
   }
   // Blending reads the colour buffer, which is far larger than the caches: ask for the survivors'
-  // lines now, and shading hides the wait for them (a light pass of the room: 8 % of its frame).
+  // lines now, and shading hides the wait for them.
   if (state_.blend.enabled) {
     const char* first = reinterpret_cast<const char*>(color + survivors[0]);
     const char* last = reinterpret_cast<const char*>(color + survivors[survived - 1] + 1);

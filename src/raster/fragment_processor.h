@@ -109,7 +109,7 @@ class FragmentProcessor {
   // Per facing: whether a fragment that fails the stencil test changes nothing (the test can fail
   // and its fail op writes nothing). A chunk of such fragments that all fail — a lit pass's "equal
   // to 0" over a shadowed stretch — is counted and skipped before its depths are made: GL discards
-  // a fragment that fails the stencil test before the depth test (GL 2.1 §4.1.5), so its depth
+  // a fragment that fails the stencil test before the depth test ([GL 2.1, §4.1.5]), so its depth
   // code, depth test and shading would be thrown away.
   bool discardsUnchanged_[2] = {false, false};
 

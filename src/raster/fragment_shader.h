@@ -1,5 +1,6 @@
 // The pluggable shading stage: everything that computes a colour (lighting, shadow-map lookups)
-// lives outside the rasterizer behind this interface (issue 2).
+// lives outside the rasterizer behind this interface, so that the
+// rasterizer stays the same for every shading model.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -46,8 +47,8 @@ class FragmentShader {
   virtual void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const;
   // What shading a fragment costs, in quarters of a plain fragment's (kPlainFragmentWork). Read only
   // by the bands' estimate of each row's work (row_work.h), which compares the draws of one flush:
-  // the room's specular floor and furniture cost about 1.7 times its walls a lit fragment, and
-  // weighed alike the band of the floor's rows took 1.5 times its share. Rough by design — any
+  // a specular surface costs a lit fragment markedly more than a diffuse one, and weighed alike the
+  // band of its rows would get more than its share. Rough by design — any
   // split gives the same bytes.
   virtual int fragmentWork() const { return kPlainFragmentWork; }
 };

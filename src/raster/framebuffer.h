@@ -1,4 +1,4 @@
-// The four buffers of SPEC.md §1: colour, depth, stencil, accumulation. Each exists only once a
+// The four buffers: colour, depth, stencil, accumulation. Each exists only once a
 // pass asks for it (Framebuffer::ensure*), so a scene that never uses stencil never allocates it.
 // Pixel (x, y) is at index y * width + x with row 0 at the bottom, as glReadPixels returns it.
 #pragma once
@@ -28,7 +28,7 @@ enum class DepthFormat : uint8_t {
 // Depth values are kept as 32-bit codes whose unsigned order is the depth order: for Float32 the
 // IEEE bits of a non-negative float (positive floats sort like their bit patterns), for Unorm24
 // round(z * (2^24 - 1)). The depth test therefore compares integers, exactly as the buffer holds
-// them, after the fragment depth has been converted to the buffer's format (GL 2.1 §4.1.5).
+// them, after the fragment depth has been converted to the buffer's format ([GL 2.1, §4.1.5]).
 struct DepthCodec {
   DepthFormat format = DepthFormat::Float32;
   // z is clamped to [0, 1] first. Not with std::clamp: it returns -0.0 (and NaN) unchanged, and
@@ -43,7 +43,8 @@ struct DepthCodec {
     if (format == DepthFormat::Unorm24) return double(code) / 16777215.0;
     return double(std::bit_cast<float>(code));
   }
-  // The minimum resolvable difference r of the polygon offset formula at depth z (GL 1.1 §3.5.5).
+  // The minimum resolvable difference r of the polygon offset formula at depth z
+  // ([GL 2.1, §3.5.5]).
   double resolvableDifference(double zMax) const;
 };
 

@@ -1,4 +1,5 @@
-// The Phong illumination model (000 §2.3), as OpenGL's fixed-function lighting computes it:
+// The Phong illumination model ([Kuhn 2016, §2.3]), as OpenGL's fixed-function lighting computes
+// it:
 //   colour = emission + ambient_global * ka
 //          + sum over lights: att * spot * (kd * Id * max(N.L, 0) + ks * Is * max(R.V, 0)^n)
 // with the Blinn-Phong variant using max(N.H, 0)^n, H the half vector of L and V. Lighting is
@@ -57,9 +58,7 @@ struct LightTerms {
 LightTerms lightTerms(const PhongLight& light, const PhongMaterial& m);
 // What per-pixel lighting by these terms costs a fragment (FragmentShader::fragmentWork): a plain
 // fragment's, plus for each light its direction, attenuation and diffuse term (one plain
-// fragment's again), its specular power (about as much again; callgrind on the room: a lit
-// fragment took 107 instructions with no material specular and 181 with every one) and its spot
-// cone.
+// fragment's again), its specular power (about as much again) and its spot cone.
 int lightingFragmentWork(const std::vector<LightTerms>& terms);
 glm::dvec3 lightContribution(const LightTerms& light, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& eye);
 // lightContribution for every fragment of a batch of per-pixel shading (varyings in the

@@ -1,5 +1,5 @@
 // The power function of the lighting model: the specular term max(R.V, 0)^n and the spot term
-// max(cos, 0)^e (000 §2.3; GL's shininess and spot exponent, both in [0, 128]).
+// max(cos, 0)^e ([Kuhn 2016, §2.3]; GL's shininess and spot exponent, both in [0, 128]).
 //
 // Why not std::pow: the C library's pow is free to differ between libraries and versions (glibc
 // rewrote it in 2.28), so the same scene could give other bytes on another machine; and it is

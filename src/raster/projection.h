@@ -13,9 +13,9 @@ glm::dmat4 perspective(double fovYDegrees, double aspect, double nearVal, double
 // glOrtho.
 glm::dmat4 ortho(double left, double right, double bottom, double top, double nearVal, double farVal);
 
-// The infinite projection P_inf (000 §3.3, after Blinn): the frustum matrix in the limit
-// far -> infinity, third row (0, 0, -1, -2 near). A point at infinity (w = 0) lands exactly on
-// the far plane (depth 1). With epsilon > 0 the third row becomes (0, 0, epsilon - 1,
+// The infinite projection P_inf ([Kuhn 2016, §3.3], after [Blinn 1993]): the frustum matrix in the
+// limit far -> infinity, third row (0, 0, -1, -2 near). A point at infinity (w = 0) lands exactly
+// on the far plane (depth 1). With epsilon > 0 the third row becomes (0, 0, epsilon - 1,
 // (epsilon - 2) near), which keeps such points a little inside the far plane where float
 // rounding would otherwise push them beyond it.
 glm::dmat4 infiniteFrustum(double left, double right, double bottom, double top, double nearVal,

@@ -1,5 +1,5 @@
 // Coverage: walks a set-up triangle over a pixel region and hands every covered pixel centre to
-// a sink, with the three edge-function values there (SPEC.md §1). Two forms of one decision:
+// a sink, with the three edge-function values there. Two forms of one decision:
 // rasterizeSpans, row intervals, which the renderer uses; and rasterizeTriangle, pixel by pixel,
 // which the reference path (Renderer::useReferencePath) and the pixel history's tests use.
 //

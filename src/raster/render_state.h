@@ -1,4 +1,4 @@
-// Render state as plain data (OpenGL 2.1 fixed-function semantics, SPEC.md §1).
+// Render state as plain data (OpenGL 2.1 fixed-function semantics, [GL 2.1]).
 // Everything the per-fragment operations and the primitive stages consult lives here, so a
 // draw is fully described by (state, vertices, shader) and can be printed or compared.
 #pragma once
@@ -39,7 +39,7 @@ struct BlendState {
   BlendFactor dst = BlendFactor::Zero;  // equation is always FUNC_ADD
 };
 
-// GL 1.1 polygon offset for filled primitives: o = factor * m + units * r (see polygon_offset.h).
+// GL 1.1 polygon offset for filled primitives: o = factor * m + units * r ([GL 2.1, §3.5.5]).
 struct PolygonOffset {
   bool enabled = false;
   double factor = 0.0;
@@ -68,8 +68,8 @@ struct RenderState {
   bool depthWrite = true;
   // ARB_depth_clamp: near and far clipping off, fragment depth clamped to the depth range.
   bool depthClamp = false;
-  // Clip against the far plane z <= w. Off for the infinite projection P_inf (000 §3.3), where
-  // w = 0 vertices lie exactly on it.
+  // Clip against the far plane z <= w. Off for the infinite projection P_inf ([Kuhn 2016, §3.3]),
+  // where w = 0 vertices lie exactly on it.
   bool clipFar = true;
   PolygonOffset polygonOffset;
 

@@ -136,7 +136,7 @@ void Renderer::assembleTriangle(const ClipVertex* a, const ClipVertex* b, const 
   if (ws.clipOut.size() < 3) return;
   ws.windowPolygon.clear();
   for (const ClipVertex& v : ws.clipOut) ws.windowPolygon.push_back(toWindow(ws.clippedVertices.push(v), state.viewport));
-  // Facing of the polygon as a whole (GL 2.1 §2.14.1: the area of the clipped polygon).
+  // Facing of the polygon as a whole ([GL 2.1, §2.14.1]: the area of the clipped polygon).
   int64_t area2 = 0;
   for (size_t i = 1; i + 1 < ws.windowPolygon.size(); ++i)
     area2 += signedArea2(ws.windowPolygon[0], ws.windowPolygon[i], ws.windowPolygon[i + 1]);
@@ -192,8 +192,7 @@ constexpr size_t kCornerChunk = 1024;
 // vertex costs a few instructions for each of the draw's vertices (marking and scanning) and about
 // 85 for each it uses; per corner about 85 for each corner. A volume's side quads share their
 // silhouette vertices (about three corners a vertex), so even a piece of a volume draw whose
-// vertices outnumber its corners (the pumpkins' sides: 3352 vertices, 3156 corners, cut between
-// groups at two threads) is cheaper per vertex.
+// vertices outnumber its corners (a volume's sides cut between groups) is cheaper per vertex.
 constexpr size_t kVerticesPerCornerForCorners = 8;
 }  // namespace
 
@@ -236,8 +235,8 @@ void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes, Ve
 
 namespace {
 // Every index of a draw within its vertices, or std::out_of_range before anything of it is
-// assembled, queued or drawn. The largest index, in a loop without an exit: it vectorises (the
-// pumpkins' passes draw a quarter of a million indices each, on the calling thread).
+// assembled, queued or drawn. The largest index, in a loop without an exit: it vectorises (a
+// large pass has hundreds of thousands of indices, checked on the calling thread).
 void checkIndices(const DrawCall& call) {
   uint32_t largest = 0;
   for (const uint32_t index : call.indices) largest = std::max(largest, index);
@@ -438,11 +437,11 @@ void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int
 void Renderer::assembleQueued() {
   // The pass's triangles, draw after draw, cut into runs, a few per thread, each assembled into
   // one workspace by one task: one pool run for the whole pass instead of one or two per draw, one
-  // block per group (the city's volume pass queues ~800 draws, the pumpkins' passes a dozen large
-  // ones). The threads take the groups in order, so the runs shrink — shares groups + 1, groups,
-  // … 2 of the triangles — and the last ones, small, even out the threads' ends; a draw may be cut
-  // between groups (groups of whole draws waited for the lantern's 6012 triangles). A draw that
-  // takes kept setups (SetupReuse) is not assembled: its setups are copied in the second run.
+  // block per group (a volume pass may queue hundreds of small draws, or a dozen large ones). The
+  // threads take the groups in order, so the runs shrink — shares groups + 1, groups, … 2 of the
+  // triangles — and the last ones, small, even out the threads' ends; a draw may be cut between
+  // groups (groups of whole draws would wait for the largest draw). A draw that takes kept setups
+  // (SetupReuse) is not assembled: its setups are copied in the second run.
   auto assembled = [](const QueuedAssembly& q) { return q.kept ? size_t(0) : trianglesOf(q.call); };
   size_t total = 0;
   for (const QueuedAssembly& q : queued_) total += assembled(q);

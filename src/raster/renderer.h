@@ -1,5 +1,5 @@
 // The draw call: primitive assembly -> clipping -> triangle setup -> rasterization -> fragment
-// operations, for triangles given in clip space (SPEC.md §1).
+// operations, for triangles given in clip space ([GL 2.1, §2.11-§4.1]).
 #pragma once
 
 #include <algorithm>
@@ -102,7 +102,8 @@ class Renderer {
   // once per triangle corner: whether it is inside every clip plane, and if so its window vertex.
   struct VertexCorners {
     // Written only for the vertices inside (and read only for those): grown without zeroing, a
-    // 56-byte vertex each (the pumpkins' volumes, 6704 vertices, in each of eight workspaces).
+    // 56-byte vertex each: a large volume draw has thousands, in each workspace, and zeroing them
+    // first would write every one twice.
     std::vector<WindowVertex, ConstructLaterAllocator<WindowVertex>> window;
     std::vector<uint8_t> inside;
     const ClipVertex* base = nullptr;  // the draw's vertices; empty: work per corner
@@ -165,7 +166,8 @@ class Renderer {
     const SetupReuse* kept = nullptr;  // the setups it takes instead of assembling (SetupReuse)
   };
   // Triangles [first, last) of queued draw `draw`, assembled by one group: a group is a run of
-  // the pass's triangles, so a large draw (the pumpkins' lantern: 6012) is cut between groups.
+  // the pass's triangles, so a large draw (thousands of triangles) is cut between groups
+  // rather than holding up one thread.
   struct QueuedPiece {
     size_t draw = 0;
     size_t first = 0, last = 0;
@@ -307,8 +309,8 @@ class Renderer {
 //
 // With Geometry::Kept the maker also keeps every draw's vertices and indices until it ends (not
 // refilled between draws): the draws are then not even assembled at once, but all together at the
-// end, on all threads — the city's 129 casters' volumes, a few dozen triangles each, or the
-// pumpkins' dozen large meshes, without a pool run per draw.
+// end, on all threads — many casters' volumes of a few dozen triangles each, or a few large
+// meshes, without a pool run per draw.
 class DeferredDraws {
  public:
   enum class Geometry { Refilled, Kept };

@@ -54,9 +54,9 @@ class RowWork {
     if (shaped) addShape(t, setup, bottom, top, width, pixel);
   }
   // Whether a flush of this many setups is weighed by the triangles' shapes: a pass of many small
-  // triangles (the pumpkins' 27 000) evens out what their boxes get wrong, and weighing their
-  // shapes would cost it more than its bands gain; a pass of a few hundred large ones (the room's
-  // walls and volume sides) is where a box gives a band the wrong share.
+  // triangles (tens of thousands) evens out what their boxes get wrong, and weighing their
+  // shapes would cost it more than its bands gain; a pass of a few hundred large ones (walls and
+  // volume sides) is where a box gives a band the wrong share.
   static bool weighsShapes(size_t setups) { return setups <= 4096; }
   // A cleared rectangle: a cleared row costs about a quarter of a drawn one.
   void addClear(const Rect& region);

@@ -11,7 +11,7 @@ namespace shadowref {
 
 // stencil[i] += counts[i] (modulo 256), then counts[i] = 0, for i in [0, n): 32 bytes a step. GCC
 // left the plain loop scalar (two byte pointers, which may alias each other), about eight
-// instructions a pixel: 4 M a frame of 800x640 at two threads.
+// instructions a pixel; as 32-byte vectors the same work takes a few instructions per 32 pixels.
 inline void addAndZeroCounts(uint8_t* stencil, uint8_t* counts, size_t n) {
   using Bytes = uint8_t __attribute__((vector_size(32)));
   size_t i = 0;

@@ -19,9 +19,9 @@ constexpr std::chrono::microseconds kSpinTime{3000};
 
 // Tasks a claim takes: a kClaimShare-th of a thread's share of those left (guided
 // self-scheduling). A claim is an atomic operation on a cache line every thread writes — between
-// cores 50 to a few hundred nanoseconds here — and in a run of 129 small tasks (the city's
-// vertex ranges, 1-8 us each) claimed one at a time the two threads stood idle for 14 % of it;
-// claimed this way, 3 %. Large claims first, single tasks at the end, so that the threads still
+// cores 50 to a few hundred nanoseconds — so a run of many small tasks (microseconds each)
+// claimed one at a time leaves the threads idle for a large part of it; claimed a share at a time,
+// the claims are few. Large claims first, single tasks at the end, so that the threads still
 // end together; a run of fewer than 2 x kClaimShare tasks a thread (the bands of a pass, already
 // cut into shrinking shares) is claimed one task at a time, as before.
 constexpr int kClaimShare = 8;

@@ -1,7 +1,7 @@
 // A small pool of persistent worker threads for the rasterizer. Work is handed out as numbered
 // tasks (bands of rows, chunks of triangles); which thread runs which task varies, but tasks touch
 // disjoint pixels and each runs its triangles in submission order, so the buffers come out
-// byte-identical for any thread count (the llvmpipe idea of STYLE.md: each tile owned by one
+// byte-identical for any thread count (llvmpipe's idea: each tile owned by one
 // thread, replayed in order) — or, where the order cannot matter (stencil counts, which only add
 // modulo 256: counting_flush.cpp), each writes a buffer of its own that is summed after.
 //

@@ -1,5 +1,5 @@
 // Triangle setup: viewport transform, snapping to fixed point, facing, and the edge functions the
-// rasterizer walks (SPEC.md §1).
+// rasterizer walks.
 //
 // Window coordinates are snapped to 1/256 pixel (kSubpixelBits = 8) and every coverage decision
 // is made in exact 64-bit integer arithmetic, so two triangles that share an edge see the same
@@ -27,7 +27,7 @@ struct WindowVertex {
   const ClipVertex* source = nullptr;
 };
 
-// Clip space -> window space for one vertex (GL 2.1 §2.11.1). Requires w > 0.
+// Clip space -> window space for one vertex ([GL 2.1, §2.11.1]). Requires w > 0.
 WindowVertex toWindow(const ClipVertex& v, const Viewport& vp);
 
 // Twice the signed area in fixed-point units; > 0 is counter-clockwise (row 0 at the bottom).

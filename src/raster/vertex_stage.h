@@ -1,6 +1,7 @@
 // Object space -> clip space. Every pass that draws the same vertex (the scene pass, a shadow
 // volume's front cap) must go through this one function with the same matrices: equal inputs then
-// give bit-equal clip coordinates and bit-equal depths (SPEC.md §3, step 2).
+// give bit-equal clip coordinates and bit-equal depths: z-fail counts the front cap
+// only if it fails the depth test LESS against the scene's own depth there.
 #pragma once
 
 #include <glm/glm.hpp>

@@ -83,8 +83,8 @@ void dropDegenerate(Mesh& mesh, std::vector<std::string>* warnings) {
   mesh.triangles.resize(kept);
 }
 
-// 000 §4.3.5, Algorithm 1 "createEdgeList", with the list search replaced by a hash map keyed by
-// the unordered vertex pair: O(n) instead of O(n²).
+// [Kuhn 2016, §4.3.5, Algorithm 1] "createEdgeList", with the list search replaced by a hash map
+// keyed by the unordered vertex pair: O(n) instead of O(n²).
 void buildEdges(Mesh& mesh) {
   std::unordered_map<uint64_t, uint32_t> edgeOf;
   edgeOf.reserve(mesh.weldedTriangles.size() * 2);

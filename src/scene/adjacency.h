@@ -1,4 +1,4 @@
-// Welding and the edge list of a mesh (000 §4.3.5, SPEC.md §2): what the silhouette algorithms
+// Welding and the edge list of a mesh ([Kuhn 2016, §4.3.5]): what the silhouette algorithms
 // need — every edge with its two vertices and the triangles on either side.
 #pragma once
 
@@ -14,7 +14,7 @@ namespace shadowref {
 //  - drops degenerate triangles (two equal welded corners, or zero area) from BOTH views and
 //    appends one warning per dropped triangle to `warnings` when given;
 //  - builds the edge list in O(n) with a hash map keyed by the unordered welded vertex pair,
-//    edges in order of first appearance, v0 -> v1 as the edge runs in t0 (000 §4.3.5);
+//    edges in order of first appearance, v0 -> v1 as the edge runs in t0 ([Kuhn 2016, §4.3.5]);
 //  - counts open (1 triangle) and non-manifold (>= 3) edges and sets the topology;
 //  - face normals from the welded positions, object-space bounds.
 // weldedPositions holds every distinct render position, also those used only by dropped triangles.

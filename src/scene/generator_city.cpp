@@ -1,5 +1,5 @@
-// The urban scene of 000 §5.4.1: "Ein Block besteht dabei aus vier zufällig ausgewählten Häusern.
-// Bei den Häusern handelt es sich um sehr einfache, polygonarme Modelle."
+// The urban scene of [Kuhn 2016, §5.4.1]:
+// "Ein Block besteht dabei aus vier zufällig ausgewählten Häusern. Bei den Häusern handelt es sich um sehr einfache, polygonarme Modelle."
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -125,8 +125,9 @@ void addCity(Scene& scene, const CityOptions& o) {
   }
   b.root(std::move(city));
 
-  // One light high above the centre, or several on a square grid above the city (000 §5.4.1, the
-  // second test adds lights), their intensities sharing 1 so the picture keeps its brightness.
+  // One light high above the centre, or several on a square grid above the city
+  // ([Kuhn 2016, §5.4.1], the second test adds lights), their intensities sharing 1 so the picture
+  // keeps its brightness.
   const int lights = std::max(1, o.lights);
   const int lightsPerRow = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(lights))));
   const double span = 0.5 * std::max(framed.extentX, framed.extentZ);

@@ -1,5 +1,5 @@
-// The outdoor scene of 002 §6: a wide terrain whose shadows must stay sharp far and near — the case
-// trapezoidal shadow maps are made for — under a low directional light.
+// The outdoor scene of [Hempe 2004, §6]: a wide terrain whose shadows must stay sharp far and near
+// — the case trapezoidal shadow maps are made for — under a low directional light.
 #include <cmath>
 
 #include "scene/generator_support.h"

@@ -1,4 +1,4 @@
-// The Halloween porch of 000 Abb. 5.2 / 5.8.
+// The Halloween porch of [Kuhn 2016, Fig. 5.2 / 5.8].
 #include <cmath>
 
 #include "scene/generator_support.h"
@@ -28,10 +28,11 @@ constexpr PumpkinPlace kPumpkins[7] = {
 // The candle flame, in lantern radii in the lantern's own frame (+x is the face): a quarter radius
 // below the centre and off every plane of symmetry. Not at the centre: the inner skin is the outer
 // one scaled about the centre, so every rim quad lies in a plane through it, and a light there
-// would be in the plane of all 204 rim triangles — N · (L − V) = 0 (000 §4.3.4), each rim's facing
-// left to rounding and its surface lying exactly in a shadow-volume side (z-fighting in the stencil).
-// This offset keeps the light at least |cos| 0.038 off every lantern triangle's plane at the default
-// 54 x 32 grid (0.012 at the coarsest grids the loader allows) and still below the lid opening.
+// would be in the plane of all 204 rim triangles — N · (L − V) = 0 ([Kuhn 2016, §4.3.4]), each
+// rim's facing left to rounding and its surface lying exactly in a shadow-volume side (z-fighting
+// in the stencil). This offset keeps the light at least |cos| 0.038 off every lantern triangle's
+// plane at the default 54 x 32 grid (0.012 at the coarsest grids the loader allows) and still below
+// the lid opening.
 constexpr glm::dvec3 kCandleOffset{0.05, -0.28, 0.11};
 
 }  // namespace
@@ -99,8 +100,8 @@ void addPumpkins(Scene& scene, const PumpkinOptions& o) {
     scene.height = 640;
     scene.ambient = glm::dvec3(0.1);
     // 42 degrees left of the lantern's face, outside every opening: its shell lies between the
-    // candle and the eye, so the camera is inside the lantern's shadow volume (000 Abb. 5.8) and
-    // z-pass miscounts, while the face still shows.
+    // candle and the eye, so the camera is inside the lantern's shadow volume
+    // ([Kuhn 2016, Fig. 5.8]) and z-pass miscounts, while the face still shows.
     scene.camera.eye = {-1.4, 1.1, 3.1};
     scene.camera.target = {0.4, 0.35, 1.0};
     scene.camera.up = {0.0, 1.0, 0.0};

@@ -1,5 +1,5 @@
-// The room of 000 Abb. 5.1 and the default scene. The other generators: generator_pumpkins.cpp,
-// generator_city.cpp, generator_outdoor.cpp.
+// The room of [Kuhn 2016, Fig. 5.1] and the default scene. The other generators:
+// generator_pumpkins.cpp, generator_city.cpp, generator_outdoor.cpp.
 #include "scene/generators.h"
 
 #include "scene/generator_support.h"
@@ -79,7 +79,8 @@ void addRoom(Scene& scene, const RoomOptions& o) {
       makeChair(chair, chairMaterial, "chair1", translation({1.1, 0.0, -0.15}) * quarterTurnsY(2)));
   b.root(std::move(room));
 
-  // 000 §5.2: "eine Punktlichtquelle, welche sich direkt mittig unter der Decke des Raumes befindet".
+  // [Kuhn 2016, §5.2]:
+  // "eine Punktlichtquelle, welche sich direkt mittig unter der Decke des Raumes befindet".
   Light light;
   light.name = "ceiling";
   light.type = LightType::Point;

@@ -1,4 +1,4 @@
-// The documents' test scenes as generators (SPEC.md §2, issue 3): each adds its meshes, materials,
+// The documents' test scenes as generators: each adds its meshes, materials,
 // one root node, its lights and — when `setView` is on — the camera, image size and ambient light
 // into a Scene. Seeded and deterministic: the same options give bit-identical scenes everywhere.
 #pragma once
@@ -9,8 +9,8 @@
 
 namespace shadowref {
 
-// 000 Abb. 5.1: a closed room seen from inside (floor, ceiling and four walls as separate slabs),
-// a table and two chairs, a point light just under the centre of the ceiling. 800 x 640.
+// [Kuhn 2016, Fig. 5.1]: a closed room seen from inside (floor, ceiling and four walls as separate
+// slabs), a table and two chairs, a point light just under the centre of the ceiling. 800 x 640.
 struct RoomOptions {
   glm::dvec3 size{8.0, 3.0, 6.0};  // inside dimensions (x, y, z); the floor's top is y = 0
   double wallThickness = 0.2;
@@ -21,9 +21,9 @@ void addRoom(Scene& scene, const RoomOptions& options = {});
 // The default scene of `shadowref render` without a scene file: the room.
 Scene makeDefaultScene();
 
-// 000 Abb. 5.2 and 5.8: a porch with seven pumpkins; one is hollow, with openings for its face and
-// its lid, and holds the point light. The default camera sits in the shell's shadow volume, so
-// z-pass counts wrongly there. About 27 000 triangles, as in the document.
+// [Kuhn 2016, Fig. 5.2 and 5.8]: a porch with seven pumpkins; one is hollow, with openings for its
+// face and its lid, and holds the point light. The default camera sits in the shell's shadow
+// volume, so z-pass counts wrongly there. About 27 000 triangles, as in the document.
 struct PumpkinOptions {
   int slices = 54;  // around each pumpkin
   int stacks = 32;  // pole to pole
@@ -31,8 +31,9 @@ struct PumpkinOptions {
 };
 void addPumpkins(Scene& scene, const PumpkinOptions& options = {});
 
-// 000 §5.4.1: blocks of four houses on a ground slab; each house one of a few simple closed models,
-// chosen at random or always `model`; one point light high above, or `lights` in a grid.
+// [Kuhn 2016, §5.4.1]: blocks of four houses on a ground slab; each house one of a few simple
+// closed models, chosen at random or always `model`; one point light high above, or `lights` in a
+// grid.
 struct CityOptions {
   int houses = 64;
   bool randomModels = true;
@@ -47,8 +48,8 @@ struct CityOptions {
 inline constexpr int kCityModelCount = 4;
 void addCity(Scene& scene, const CityOptions& options = {});
 
-// 002 §6: a wide terrain with gentle hills, trees and poles under a low directional light — the
-// shadow-map scene (finite far plane, so the camera frustum has eight corners for TSM).
+// [Hempe 2004, §6]: a wide terrain with gentle hills, trees and poles under a low directional light
+// — the shadow-map scene (finite far plane, so the camera frustum has eight corners for TSM).
 struct OutdoorOptions {
   uint32_t seed = 1;
   int trees = 40;

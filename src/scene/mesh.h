@@ -1,10 +1,11 @@
-// A triangle mesh as the renderer and the shadow algorithms see it (SPEC.md §2).
+// A triangle mesh as the renderer and the shadow algorithms see it.
 //
 // Two views of the same triangles, index for index:
 //  - the render view: vertices with their own normals (split at seams and creases), for shading;
-//  - the welded view: one vertex per distinct position, for adjacency (000 §4.3.5). Welding is by
-//    exact position, so a welded vertex has bit-for-bit the coordinates of the render vertices it
-//    stands for, and the shadow-volume front cap transforms exactly as the scene pass did.
+//  - the welded view: one vertex per distinct position, for adjacency ([Kuhn 2016, §4.3.5]).
+//    Welding is by exact position, so a welded vertex has bit-for-bit the coordinates of the render
+//    vertices it stands for, and the shadow-volume front cap transforms exactly as the scene pass
+//    did.
 #pragma once
 
 #include <cstdint>
@@ -28,7 +29,7 @@ struct Aabb {
 
 inline constexpr uint32_t kNoTriangle = std::numeric_limits<uint32_t>::max();
 
-// An edge of the welded mesh with the triangles on either side (000 §4.3.5).
+// An edge of the welded mesh with the triangles on either side ([Kuhn 2016, §4.3.5]).
 // v0 -> v1 is the direction in which the edge runs in triangle t0 (counter-clockwise);
 // a consistently wound neighbour t1 runs it v1 -> v0. t1 == kNoTriangle for an open edge.
 struct Edge {

@@ -1,4 +1,4 @@
-// Mesh files (SPEC.md §2): Wavefront OBJ (obj_import.cpp) and glTF 2.0 (gltf_import.cpp), read into
+// Mesh files: Wavefront OBJ (obj_import.cpp) and glTF 2.0 (gltf_import.cpp), read into
 // one triangle mesh each, triangulated, with normals computed where the file has none, welded and
 // with adjacency built (adjacency.h). Every failure throws SceneError naming the file, and the line
 // and column where the format has them (for .glb, which has no lines, the byte offset).

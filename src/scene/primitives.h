@@ -1,4 +1,4 @@
-// The built-in primitives of the scene file (SPEC.md §2): closed 2-manifolds, wound
+// The built-in primitives of the scene file: closed 2-manifolds, wound
 // counter-clockwise seen from outside, centred at the origin with y up (except where noted), and
 // already passed through buildAdjacency.
 //

@@ -1,6 +1,6 @@
-// The pumpkins of the Halloween scene (000 Abb. 5.2): a ribbed, squashed sphere, and the hollow
-// lantern — a closed shell (outer skin, inner skin, and rims joining them around every opening) with
-// openings for the lid and a face, so the light inside escapes only through them.
+// The pumpkins of the Halloween scene ([Kuhn 2016, Fig. 5.2]): a ribbed, squashed sphere, and the
+// hollow lantern — a closed shell (outer skin, inner skin, and rims joining them around every
+// opening) with openings for the lid and a face, so the light inside escapes only through them.
 #pragma once
 
 #include "scene/mesh.h"

@@ -17,8 +17,8 @@ Aabb transformBounds(const Aabb& box, const glm::dmat4& m) {
   return out;
 }
 
-// 000 §4.1.1: the scene graph, flattened depth-first; a child's world matrix is parent * local.
-// parentPath nullptr: no paths (Scene::Paths::Omitted).
+// [Kuhn 2016, §4.1.1]: the scene graph, flattened depth-first; a child's world matrix is parent *
+// local. parentPath nullptr: no paths (Scene::Paths::Omitted).
 void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, const std::string* parentPath,
              std::vector<Instance>& out) {
   const glm::dmat4 world = parent * node.local;

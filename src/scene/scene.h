@@ -1,4 +1,4 @@
-// The scene model (SPEC.md §2): what a scene file describes, after loading and validation.
+// The scene model: what a scene file describes, after loading and validation.
 // Plain data; the loader (scene_loader.h) and the generators (generators.h) produce it, the
 // renderer and the shadow algorithms read it.
 #pragma once
@@ -24,12 +24,12 @@ struct Camera {
   glm::dvec3 up{0.0, 1.0, 0.0};
   double fovYDegrees = 60.0;
   double nearPlane = 0.1;
-  double farPlane = kInfinity;  // infinity: the infinite projection P_inf (000 §3.3)
+  double farPlane = kInfinity;  // infinity: the infinite projection P_inf ([Kuhn 2016, §3.3])
 };
 
 enum class ShadingModel : uint8_t { Gouraud, PerPixel };
 
-// Phong illumination (000 §2.3).
+// Phong illumination ([Kuhn 2016, §2.3]).
 struct Material {
   std::string name = "default";
   glm::dvec3 ambient{0.2};
@@ -42,12 +42,12 @@ struct Material {
 
 enum class LightType : uint8_t { Point, Directional, Spot };
 
-// How a light is spread into several for soft shadows (000 §3.6, 002 §4.2).
+// How a light is spread into several for soft shadows ([Kuhn 2016, §3.6], [Hempe 2004, §4.2]).
 enum class SoftShape : uint8_t {
   None,
-  SquareX, SquareY, SquareZ,  // the light plus 8 lights on a square in that plane (000 §3.6)
-  Sphere14,                   // the light plus 14 on a sphere: 6 axis + 8 diagonal (000 §3.6)
-  AreaEdge16,                 // 16 lights evenly on the edge of a square area light (002 §4.2)
+  SquareX, SquareY, SquareZ,  // the light plus 8 lights on a square in that plane ([Kuhn 2016, §3.6])
+  Sphere14,                   // the light plus 14 on a sphere: 6 axis + 8 diagonal ([Kuhn 2016, §3.6])
+  AreaEdge16,                 // 16 lights evenly on the edge of a square area light ([Hempe 2004, §4.2])
 };
 
 struct Light {
@@ -56,7 +56,7 @@ struct Light {
   glm::dvec3 position{0.0, 5.0, 0.0};    // point and spot
   glm::dvec3 direction{0.0, -1.0, 0.0};  // spot: axis; directional: the direction light travels
   glm::dvec3 color{1.0};                 // diffuse and specular intensity
-  double range = kInfinity;              // 000 §4.3.1
+  double range = kInfinity;              // [Kuhn 2016, §4.3.1]
   double spotCutoffDegrees = 45.0;
   double spotExponent = 0.0;
   glm::dvec3 attenuation{1.0, 0.0, 0.0}; // constant, linear, quadratic
@@ -64,7 +64,7 @@ struct Light {
   double softSpacing = 0.1;              // distance of the extra lights, or the area's side
 
   // The light as a homogeneous point: (position, 1), or for a directional light the direction
-  // towards the light with w = 0 (L_w of 000 §4.3.3).
+  // towards the light with w = 0 (L_w of [Kuhn 2016, §4.3.3]).
   glm::dvec4 homogeneous() const {
     if (type == LightType::Directional) return glm::dvec4(-glm::normalize(direction), 0.0);
     return glm::dvec4(position, 1.0);
@@ -77,19 +77,19 @@ enum class SilhouetteAlgorithm : uint8_t { Kuhn, YenKwoon, Kilgard, Lengyel };
 // Parameters of the shadow algorithms; each issue that implements a method owns its fields.
 struct ShadowSettings {
   ShadowMethod method = ShadowMethod::None;
-  // Shadow volumes (000, 003, 004)
+  // Shadow volumes ([Kuhn 2016], [SV slides], [DSS article])
   SilhouetteAlgorithm silhouette = SilhouetteAlgorithm::Kuhn;
   bool twoSidedStencil = true;   // one pass with front/back stencil state, or two culled passes
   bool wrapOps = true;           // INCR_WRAP/DECR_WRAP; false: saturating INCR/DECR
-  bool darkenComposite = false;  // 003: lit scene first, then ambient again where stencil != 0
-  // Shadow maps (002)
+  bool darkenComposite = false;  // [SV slides]: lit scene first, then ambient again where stencil != 0
+  // Shadow maps ([Hempe 2004])
   int mapSize = 1024;
   double offsetFactor = 1.1, offsetUnits = 4.0;  // polygon offset in the map pass
   double constantBias = 0.0;
   bool backFacesOnly = false;
   int pcf = 1;                    // k x k percentage-closer filtering; 1 = nearest
-  double compareFail = 0.4;       // 002 §5.1.2
-  double focusRegion = 0.4;       // TSM 80 % rule (002 §4.1)
+  double compareFail = 0.4;       // [Hempe 2004, §5.1.2]
+  double focusRegion = 0.4;       // TSM 80 % rule ([Hempe 2004, §4.1])
 };
 
 struct Node {
@@ -98,7 +98,7 @@ struct Node {
   int mesh = -1;          // index into Scene::meshes, -1 for a pure transform node
   int material = 0;       // index into Scene::materials
   bool castShadows = true;
-  int shadowProxy = -1;   // low-poly mesh used for the volumes instead of `mesh` (004)
+  int shadowProxy = -1;   // low-poly mesh used for the volumes instead of `mesh` ([DSS article])
   std::vector<Node> children;
 };
 

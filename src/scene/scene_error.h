@@ -1,4 +1,4 @@
-// Bad input is reported as "file:line:column: message" (SPEC.md §2, §5), never a crash.
+// Bad input is reported as "file:line:column: message", never a crash.
 #pragma once
 
 #include <stdexcept>

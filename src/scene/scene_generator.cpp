@@ -9,7 +9,7 @@ namespace shadowref {
 namespace {
 
 // Limits keep a typo from asking for millions of objects; they cover the documents' experiments
-// (000 §5.4.1: up to 100 houses and 9 lights).
+// ([Kuhn 2016, §5.4.1]: up to 100 houses and 9 lights).
 constexpr int kMaxHouses = 4096;
 constexpr int kMaxCityLights = 64;
 constexpr int kMaxTrees = 10000;

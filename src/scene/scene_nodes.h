@@ -1,6 +1,6 @@
-// The `nodes:` section: the scene graph (000 §4.1.1). Each node has a name, optionally a mesh and
-// a material (by name), a transform — translate/rotate/scale, or a matrix — shadow flags and
-// children.
+// The `nodes:` section: the scene graph ([Kuhn 2016, §4.1.1]). Each node has a name, optionally a
+// mesh and a material (by name), a transform — translate/rotate/scale, or a matrix — shadow flags
+// and children.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// -D key=value overrides (SPEC.md §5): a dotted path into the scene and a YAML value, applied
+// -D key=value overrides: a dotted path into the scene and a YAML value, applied
 // after the file to the finished scene — `lights.0` is the scene's first light whether the file
 // or a generator made it. `generator.*` is the exception: it changes the generator's options
 // before the generator runs.

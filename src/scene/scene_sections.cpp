@@ -184,7 +184,7 @@ const std::vector<Field<ShadowSettings>>& shadowFields() {
        }},
       {"focus_region", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
          s.focusRegion = readNumber(v, p);
-         if (!(s.focusRegion > 0.0 && s.focusRegion < 1.0))  // a fraction of the view depth (002 §4.1)
+         if (!(s.focusRegion > 0.0 && s.focusRegion < 1.0))  // a fraction of the view depth ([Hempe 2004, §4.1])
            failAt(v.at, p + ": the focus region is a fraction of the view depth, between 0 and 1 exclusive");
        }},
   };

@@ -11,12 +11,12 @@
 namespace shadowref {
 
 enum class DrawKind : uint8_t {
-  Ambient = 0,      // 000 §3.1 step 1
+  Ambient = 0,      // [Kuhn 2016, §3.1 step 1]
   Lit = 1,          // lit pass, additive
   VolumeSides = 2,  // shadow-volume sides
   FrontCap = 3,
   BackCap = 4,
-  Darken = 5,       // 003: redraw where stencil != 0
+  Darken = 5,       // [SV slides]: redraw where stencil != 0
   Scene = 6,        // unshadowed scene
   ShadowMap = 7,    // depth from the light
   VolumeView = 8,   // teaching view of the volumes

@@ -1,15 +1,16 @@
-// Extrusion of silhouette edges to infinity (000 §3.4, §4.3.3; SPEC.md §3).
+// Extrusion of silhouette edges to infinity ([Kuhn 2016, §3.4, §4.3.3]).
 //
 // A vertex V is sent away from the light to the point at infinity
-//   V∞ = (V.xyz · L_w − L.xyz · V_w, 0)      (000 §3.4, with V_w = 1)
+//   V∞ = (V.xyz · L_w − L.xyz · V_w, 0)      ([Kuhn 2016, §3.4], with V_w = 1)
 // L_w = 1 (point, spot): the direction from the light through V. L_w = 0 (directional, L.xyz
 // towards the light): −L.xyz, the same point for every vertex, so the sides of a directional
-// light's volume meet in one point at infinity. The infinite projection P_inf (000 §3.3) maps
-// w = 0 points onto the far plane instead of clipping them.
+// light's volume meet in one point at infinity. The infinite projection P_inf ([Kuhn 2016, §3.3])
+// maps w = 0 points onto the far plane instead of clipping them.
 //
 // For a silhouette edge A -> B as it runs in its light-facing triangle (silhouette.h), the side
-// quad B, A, D, C with D = A∞, C = B∞ has its normal pointing out of the volume (000 §4.3.3,
-// lines 9-21): seen from outside it is counter-clockwise, like the front cap it continues.
+// quad B, A, D, C with D = A∞, C = B∞ has its normal pointing out of the volume
+// ([Kuhn 2016, §4.3.3], lines 9-21): seen from outside it is counter-clockwise, like the front cap
+// it continues.
 #pragma once
 
 #include <array>

@@ -1,11 +1,13 @@
-// Which triangles of a mesh face the light (000 §3.5, §4.3.4; 004 "d = n·l").
+// Which triangles of a mesh face the light ([Kuhn 2016, §3.5, §4.3.4]; [DSS article] "d = n·l").
 //
 // A triangle faces the light when the light lies strictly on the outer side of its plane:
 //   N · (L.xyz − L.w · V) > 0
 // with N the outward face normal, V any vertex of the triangle and L the homogeneous light.
-// For a point or spot light (L.w = 1) this is 000 §4.3.4's N · (L − V) > 0; for a directional
-// light (L.w = 0, L.xyz the direction TOWARDS the light) it is N · L > 0. One formula, both cases.
-// A light exactly in the triangle's plane does not face it (strict inequality, as SPEC.md §3).
+// For a point or spot light (L.w = 1) this is N · (L − V) > 0 ([Kuhn 2016, §4.3.4]); for a
+// directional light (L.w = 0, L.xyz the direction TOWARDS the light) it is N · L > 0. One formula,
+// both cases. A light exactly in the triangle's plane does not face it (strict inequality).
+// [Kuhn 2016, §4.3.4] marks a triangle back-facing when N · (L − V) < 0, so a tie faces there; here
+// it does not, so that a face parallel to a directional light is never a silhouette side.
 #pragma once
 
 #include <cstdint>
@@ -20,8 +22,8 @@ namespace shadowref {
 bool facesLight(const glm::dvec3& normal, const glm::dvec3& vertex, const glm::dvec4& light);
 
 // facing[t] = 1 when welded triangle t faces `light` (object space, as the mesh), else 0.
-// V is the triangle's first welded corner, as 000 §4.3.4 takes vertex A. `facing` is resized, so
-// a reused vector allocates only the first time.
+// V is the triangle's first welded corner, as [Kuhn 2016, §4.3.4] takes vertex A. `facing` is
+// resized, so a reused vector allocates only the first time.
 void computeFacing(const Mesh& mesh, const glm::dvec4& light, std::vector<uint8_t>& facing);
 
 // The light in an instance's object space: inverse(world) · L. Points (w = 1) and directions

@@ -1,11 +1,11 @@
 // The focus body of a trapezoidal shadow map: the part of the camera frustum where a shadow can
 // be seen, i.e. the frustum ∩ the scene's bounding box ∩ the light's view volume.
 //
-// Why (found on the outdoor scene, see docs/shadow-maps.md): 002 §4.1.2 builds the trapezoid
-// around the whole camera frustum. Outdoors, the upper half of the frustum is sky; a directional
-// light projects those points far beyond the ground, outside the light's orthographic view of
-// the scene, so a large part of the warped map held nothing (cleared to depth 1) and the
-// trapezoid, stretched to include it, spent its texels on empty space. Martin & Tan 2004 (§4,
+// Why (found on the outdoor scene, see docs/shadow-maps.md): [Hempe 2004, §4.1.2] builds the
+// trapezoid around the whole camera frustum. Outdoors, the upper half of the frustum is sky; a
+// directional light projects those points far beyond the ground, outside the light's orthographic
+// view of the scene, so a large part of the warped map held nothing (cleared to depth 1) and the
+// trapezoid, stretched to include it, spent its texels on empty space. [Martin & Tan 2004, §4]
 // "the eye's frustum ... as tight as possible") and LiSPSM's "body B" bound the frustum by the
 // scene the same way. The trapezoid is then built around the body's vertices (focused_trapezoid.h).
 #pragma once

@@ -54,7 +54,7 @@ Trapezoid focusedTrapezoid(const std::array<glm::dvec4, 8>& frustumClip, const g
   tz.lambda = sMax - sMin;
   if (!(tz.lambda > 0.0)) return boundingRectangle(p);  // a body flat across the view axis
 
-  // 4. The 80 % rule (002 §4.1.2).
+  // 4. The 80 % rule ([Hempe 2004, §4.1.2]).
   tz.focusPoint = projectXY(axisNearClip + (axisFarClip - axisNearClip) * focusRegion);
   tz.deltaPrime = glm::dot(tz.focusPoint - nearCentre, d) - sMin;
   const double denominator = tz.lambda - 2.0 * tz.deltaPrime - tz.lambda * kEightyPercentLine;

@@ -1,8 +1,8 @@
-// The trapezoid of 002 §4.1.2 built around the focus body (focus_body.h) instead of the eight
-// frustum corners: the same construction as computeTrapezoid (trapezoid.h), with its errata,
+// The trapezoid of [Hempe 2004, §4.1.2] built around the focus body (focus_body.h) instead of the
+// eight frustum corners: the same construction as computeTrapezoid (trapezoid.h), with its errata,
 // applied to a point set —
 //  - the centre line is still the camera's view axis in light space (through the images of the
-//    near- and far-plane centres), so the trapezoid opens towards the camera as 002 wants;
+//    near- and far-plane centres), so the trapezoid opens towards the camera as [Hempe 2004] wants;
 //  - top and base lines through the body's nearest and farthest points along it; λ their distance;
 //  - the focus point lies on the view axis at the fraction focusRegion of the body's depth range
 //    along the view direction (with the far plane fitted to the scene, trapezoid.h measures it

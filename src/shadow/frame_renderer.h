@@ -1,4 +1,5 @@
-// Renders one frame of a scene with its shadow method: the passes of SPEC.md §3 / §4 in order.
+// Renders one frame of a scene with its shadow method: the passes of the stencil shadow volumes
+// ([Kuhn 2016, §3.1, §4.2]) or of shadow mapping ([Hempe 2004, §3.1, §5.1]) in order.
 #pragma once
 
 #include <functional>
@@ -17,8 +18,8 @@ namespace shadowref {
 // Teaching views of the volumes drawn over the finished frame.
 enum class VolumeViewMode : uint8_t {
   None,
-  FrontBack,  // front faces red, back faces blue (003)
-  Overlay,    // translucent red volumes over the scene (004, render mode 2)
+  FrontBack,  // front faces red, back faces blue ([SV slides])
+  Overlay,    // translucent red volumes over the scene ([DSS article], render mode 2)
 };
 
 struct FrameOptions {

@@ -1,7 +1,7 @@
 // Frames of one scene at one thread and at more, in turn in one process: how shadowref's own
 // speed-up from more threads is measured (`shadowref bench --alternate`, bench/vs-mesa). Timed in
-// separate processes minutes apart, two thread counts meet different hosts (this machine's speed
-// drifts by 10-20 % within minutes); frame by frame in one process they meet the same.
+// separate processes minutes apart, two thread counts meet different hosts (a shared host's speed
+// drifts within minutes); frame by frame in one process they meet the same.
 #pragma once
 
 #include <functional>
@@ -20,8 +20,8 @@ struct FramesInTurn {
 // k and at one thread for odd k, 2 * frames in all, calling onFrame(threads, frame, wall ms) after
 // each timed one. The pool's workers stay awake through the one-thread frames, as they do in a
 // stream of frames at turn.threads: asleep, the first frames after each switch would time their
-// waking (and an awake worker does not make the one-thread frames slower: 0.93-1.00 of the time of
-// frames with it asleep, in turn in one process). One frame is alive at a time. Throws std::invalid_argument for threads < 2.
+// waking, and an awake worker does not slow the one-thread frames. One frame is alive at a time.
+// Throws std::invalid_argument for threads < 2.
 void renderFramesInTurn(const Scene& scene, FrameOptions options, const FramesInTurn& turn,
                         const std::function<void(int threads, const FrameResult& frame, double ms)>& onFrame);
 

@@ -24,7 +24,7 @@ void configureLookup(ShadowLookup& lookup, const DepthTexture& texture, const gl
   lookup.constantBias = s.constantBias;
 }
 
-// 002 §4.1: the trapezoid of the focus body in the light's post-projective space.
+// [Hempe 2004, §4.1]: the trapezoid of the focus body in the light's post-projective space.
 void buildTrapezoid(LightShadow& ls, const Scene& scene, const SceneView& view, const Aabb& bounds) {
   const LightView& lv = ls.views[0];
   const glm::dmat4 lightClip = lv.projection * lv.view;
@@ -60,7 +60,7 @@ HalfSpace frontOf(const glm::dmat4& modelView, double near) {
 // A perspective light's map warped by N_T needs its triangles clipped to the front of the light
 // BEFORE the warp: N_T mixes w into x, y and w, so a point behind the light (w < 0) can come out
 // with w' > 0 inside the square, and the rasterizer's clipping, done after the warp, would keep
-// it (the room's ceiling drew over the floor's map). Triangles wholly in front keep their
+// it (geometry behind the light would draw over the map). Triangles wholly in front keep their
 // vertices; the others are clipped (Sutherland–Hodgman) and fanned from new vertices.
 void appendClippedTriangles(const Mesh& mesh, const HalfSpace& front, const VertexTransform& xf,
                             std::vector<ClipVertex>& vertices, std::vector<uint32_t>& indices) {
@@ -137,7 +137,7 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   state.depthTest = true;
   state.depthFunc = CompareFunc::Less;
   state.colorMask = {false, false, false, false};
-  // 002 §3.2: either polygon offset or only the back faces in the map.
+  // [Hempe 2004, §3.2]: either polygon offset or only the back faces in the map.
   state.cull = scene.shadow.backFacesOnly ? CullMode::Front : CullMode::None;
   state.polygonOffset = {scene.shadow.offsetFactor != 0.0 || scene.shadow.offsetUnits != 0.0,
                          scene.shadow.offsetFactor, scene.shadow.offsetUnits};
@@ -225,9 +225,9 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
   glm::dmat4 projection = lv.projection;
   glm::dmat4 T = textureMatrix(lv);
   if (trapezoidal) {
-    // 002 Listings 11, 12: the map drawn with N_T · P_light, looked up with bias · N_T · P_light ·
-    // V_light. Inside the trapezoid the warped w is ≥ 1 (trapezoid.h), so the light's depths stay
-    // within [−1, 1] and nothing of the map's content meets the near or far plane.
+    // [Hempe 2004, Listings 11, 12]: the map drawn with N_T · P_light, looked up with bias · N_T ·
+    // P_light · V_light. Inside the trapezoid the warped w is ≥ 1 (trapezoid.h), so the light's
+    // depths stay within [−1, 1] and nothing of the map's content meets the near or far plane.
     buildTrapezoid(*ls, scene, view, bounds);
     // An affine N_T (the bounding-rectangle fallback, parallel side lines) has w'' = 1: no false
     // gradient to remove, and the map is a standard map of the rectangle.

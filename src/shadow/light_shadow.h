@@ -1,12 +1,13 @@
-// One light's shadow maps and their lookup (002 §3.1, §4.1, §5.1; SPEC.md §4): step 1 of a
+// One light's shadow maps and their lookup ([Hempe 2004, §3.1, §4.1, §5.1]): step 1 of a
 // shadow-mapped frame, and the shadow test step 2 applies to each fragment's world position.
 //   - directional light: one orthographic map fitted to the scene's bounding box;
 //   - spot light: one perspective map along its axis (light_view.h);
 //   - point light (beyond the documents): six perspective cube-face maps;
-//   - trapezoidal (directional and spot): the light's clip space warped by N_T (002 §4.1.2),
-//     the trapezoid built around the focus body, the camera frustum ∩ the scene (focus_body.h).
-// Against self-shadowing (002 §3.2): polygon offset or back faces only in the map pass, or a
-// constant bias in the comparison (shadow_lookup.h).
+//   - trapezoidal (directional and spot): the light's clip space warped by N_T
+//     ([Hempe 2004, §4.1.2]), the trapezoid built around the focus body, the camera frustum ∩ the
+//     scene (focus_body.h).
+// Against self-shadowing ([Hempe 2004, §3.2]): polygon offset or back faces only in the map pass,
+// or a constant bias in the comparison (shadow_lookup.h).
 #pragma once
 
 #include <array>
@@ -53,17 +54,16 @@ struct LightShadow {
 // The world box the maps are fitted to: every instance's bounds.
 Aabb sceneBounds(const std::vector<Instance>& instances);
 
-// The warp the TSM map is drawn and looked up with: N_T (x, y, w rows as 002 §4.1.2) with its
-// depth row replaced, so the warped depth of a point at light depth Z (NDC) on a ray whose
+// The warp the TSM map is drawn and looked up with: N_T (x, y, w rows as [Hempe 2004, §4.1.2]) with
+// its depth row replaced, so the warped depth of a point at light depth Z (NDC) on a ray whose
 // warped w is w'' times the light's becomes s · (Z − Z0) / w'' instead of Z / w'':
 //   - N_T keeps z and divides it by w'' (1 at the top line, up to (η + λ)/η at the base), which
 //     adds a depth gradient Z · ∇(1/w'') across the map that no surface has; polygon offset's
-//     slope term follows it. For a spot light, whose depths Z all lie near 1, it was 10× larger
-//     than the distance between the room's table and floor, and no shadow survived the offset
-//     (measured: 9.5 % wrong pixels, standard 0.5 %). With Z0 the false gradient is
-//     s · (Z − Z0) · ∇(1/w''): zero at depth Z0. ∇(1/w'') is largest where w'' is small, at the
-//     top line, near the camera; so Z0 = the light depth of `anchor`, the point where the view
-//     axis enters the focus body (clamped to the body's depth range);
+//     slope term follows it. For a spot light, whose depths Z all lie near 1, it can exceed the
+//     depth distance between an occluder and its receiver, and then no shadow survives the offset.
+//     With Z0 the false gradient is s · (Z − Z0) · ∇(1/w''): zero at depth Z0. ∇(1/w'') is largest
+//     where w'' is small, at the top line, near the camera; so Z0 = the light depth of `anchor`,
+//     the point where the view axis enters the focus body (clamped to the body's depth range);
 //   - s = 1 / the larger distance from Z0 to the ends of the body's depth range (plus
 //     kFocusedDepthMargin) spends the depth buffer on the visible part: receivers in the body
 //     get |depth| ≤ 1; casters nearer the light fall below −1 and are clamped to window depth 0
@@ -84,10 +84,11 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
                                               int threads, RasterStats& stats);
 
 // Step 1 alone: depth from the light into a size × size map through `view` and `projection`
-// (P_light, or N_T · P_light for TSM, 002 Listing 11). Casters are the instances' shadow meshes
-// (the low-poly proxy where given, 004) within the light's range. clipNear > 0: triangles are
-// first clipped to the front of the light's near plane at that distance (a perspective map
-// warped by N_T, see light_shadow.cpp). depthClamp: ARB_depth_clamp in the pass (TSM).
+// (P_light, or N_T · P_light for TSM, [Hempe 2004, Listing 11]). Casters are the instances' shadow
+// meshes (the low-poly proxy where given, [DSS article]) within the light's range. clipNear > 0:
+// triangles are first clipped to the front of the light's near plane at that distance (a
+// perspective map warped by N_T, see light_shadow.cpp). depthClamp: ARB_depth_clamp in the
+// pass (TSM).
 DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& instances, const Light& light,
                             const glm::dmat4& view, const glm::dmat4& projection, int threads, RasterStats& stats,
                             double clipNear = 0.0, bool depthClamp = false);

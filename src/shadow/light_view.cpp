@@ -101,7 +101,7 @@ CubeFace cubeFaceFor(const glm::dvec3& r) {
   return r.z >= 0.0 ? CubeFace::PositiveZ : CubeFace::NegativeZ;
 }
 
-// GL 2.1 §3.8.6: for major axis +x, s_c = −r_z, t_c = −r_y; −x: +r_z, −r_y; +y: +r_x, +r_z;
+// [GL 2.1, §3.8.6]: for major axis +x, s_c = −r_z, t_c = −r_y; −x: +r_z, −r_y; +y: +r_x, +r_z;
 // −y: +r_x, −r_z; +z: +r_x, −r_y; −z: −r_x, −r_y. A view with these forward and up vectors and a
 // 90° perspective gives x_ndc = s_c / |m_a| and y_ndc = t_c / |m_a| (checked in light_view_test).
 glm::dvec3 cubeFaceForward(CubeFace face) {

@@ -1,5 +1,6 @@
-// The light's view and projection for a shadow map (002 §3.1, §5.1), and the texture matrix
-// T = bias · P_light · V_light that carries a world position into the map's [0, 1] texture space.
+// The light's view and projection for a shadow map ([Hempe 2004, §3.1, §5.1]), and the texture
+// matrix T = bias · P_light · V_light that carries a world position into the map's [0, 1] texture
+// space.
 //
 // Which world region a map covers is the caller's choice: the functions fit to the box they are
 // given. The frame passes give the scene's bounding box (every caster and receiver), not the
@@ -32,8 +33,8 @@ inline constexpr double kLightDepthMargin = 1e-3;
 // (|d.y| > 0.999), where +y would be nearly parallel to the view direction.
 glm::dvec3 lightUpVector(const glm::dvec3& direction);
 
-// Directional light (002 §5.1.2: "orthografische Sicht"): looks along Light::direction from
-// outside `bounds`, with glOrtho fitted tightly to the box's eight corners in light eye space
+// Directional light ([Hempe 2004, §5.1.2]: "orthografische Sicht"): looks along Light::direction
+// from outside `bounds`, with glOrtho fitted tightly to the box's eight corners in light eye space
 // (x, y exactly; depth with kLightDepthMargin).
 LightView directionalLightView(const Light& light, const Aabb& bounds);
 
@@ -45,27 +46,29 @@ LightView directionalLightView(const Light& light, const Aabb& bounds);
 inline constexpr double kMinNearOverFar = 1e-3;
 LightView spotLightView(const Light& light, const Aabb& bounds);
 
-// The map's view for a directional or spot light (the two 002 §3.2 allows): directionalLightView
-// or spotLightView. Point lights need the six views of pointLightCubeViews instead.
+// The map's view for a directional or spot light (the two [Hempe 2004, §3.2] allows):
+// directionalLightView or spotLightView. Point lights need the six views of pointLightCubeViews
+// instead.
 LightView shadowLightView(const Light& light, const Aabb& bounds);
 
-// The bias matrix of 002 §3.1 / Listing 4: x, y, z from [−1, 1] to [0, 1]. The seed prints it with
-// the translation 0.5, 0.5, 0.5 in the last ROW: that is OpenGL's column-major array order
-// (the MATRIX4X4 constructor of Listing 4 takes the array), not the mathematical matrix, whose
-// translation is in the last column. Here: the mathematical matrix, for column vectors.
+// The bias matrix of [Hempe 2004, §3.1 / Listing 4]: x, y, z from [−1, 1] to [0, 1]. The thesis
+// prints it with the translation 0.5, 0.5, 0.5 in the last ROW: that is OpenGL's column-major array
+// order (the MATRIX4X4 constructor of Listing 4 takes the array), not the mathematical matrix,
+// whose translation is in the last column. Here: the mathematical matrix, for column vectors.
 glm::dmat4 biasMatrix();
 
-// T = bias · P_light · V_light (002 §3.1 and Listing 4), applied to WORLD positions. The seed's
-// formula T = P_l · V_l · V_c⁻¹ includes the inverse camera matrix because EYE_LINEAR texgen
-// produces eye coordinates; a fragment shader here gets the world position directly.
+// T = bias · P_light · V_light ([Hempe 2004, §3.1 and Listing 4]), applied to WORLD positions. The
+// thesis' formula T = P_l · V_l · V_c⁻¹ includes the inverse camera matrix because EYE_LINEAR
+// texgen produces eye coordinates; a fragment shader here gets the world position directly.
 glm::dmat4 textureMatrix(const LightView& light);
-// With the trapezoidal warp (002 Listing 11): T = bias · N_T · P_light · V_light.
+// With the trapezoidal warp ([Hempe 2004, Listing 11]): T = bias · N_T · P_light · V_light.
 glm::dmat4 textureMatrix(const LightView& light, const glm::dmat4& trapezoidNT);
 
-// Point lights, beyond the documents (002 §3.2 says shadow maps cannot do omnidirectional
+// Point lights, beyond the documents ([Hempe 2004, §3.2] says shadow maps cannot do omnidirectional
 // lights): six perspective maps, fovY 90°, aspect 1, one per cube face, oriented as OpenGL's cube
-// map faces (GL 2.1 §3.8.6, the major-axis table): face f's map, looked up with textureMatrix(views[f]),
-// is the face image GL would sample for a direction whose major axis selects f.
+// map faces ([GL 2.1, §3.8.6], the major-axis table): face f's map, looked up with
+// textureMatrix(views[f]), is the face image GL would sample for a direction whose major axis
+// selects f.
 enum class CubeFace : int { PositiveX = 0, NegativeX, PositiveY, NegativeY, PositiveZ, NegativeZ };
 
 // GL's major-axis rule: the component of largest magnitude picks the face, its sign the

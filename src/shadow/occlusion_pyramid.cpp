@@ -75,7 +75,7 @@ std::array<glm::dvec3, 4> nearPlaneCorners(const Camera& camera, double aspect) 
   const glm::dvec3 up = glm::cross(right, forward);
   const glm::dvec3 centre = camera.eye + forward * camera.nearPlane;
   const double halfHeight = std::tan(camera.fovYDegrees * std::numbers::pi / 360.0) * camera.nearPlane;
-  const double halfWidth = halfHeight * aspect;  // not tan(fovX/2)·near with 000's fovX: see header
+  const double halfWidth = halfHeight * aspect;  // not tan(fovX/2)·near with the fovX of [Kuhn 2016, §4.2.1]: see header
   const glm::dvec3 w = right * halfWidth, h = up * halfHeight;
   return {centre - w - h, centre + w - h, centre + w + h, centre - w + h};
 }

@@ -1,4 +1,5 @@
-// McGuire's choice between z-pass and z-fail per object (000 §3.2, §4.2.1, §4.3.2; [MGU03]).
+// McGuire's choice between z-pass and z-fail per object ([Kuhn 2016, §3.2, §4.2.1, §4.3.2];
+// [McGuire et al. 2003]).
 //
 // Z-pass counts wrongly exactly where a shadow volume is cut by the near plane inside the view,
 // i.e. where some point p of the near-plane rectangle lies in the shadow of (or inside) an
@@ -32,11 +33,11 @@ struct OcclusionPyramid {
   glm::dvec4 light{0.0, 0.0, 0.0, 1.0};
 };
 
-// The near-plane rectangle of 000 §4.2.1, with the camera basis of gluLookAt (projection.h).
-// Erratum: 000 §4.2.1 writes fovX = 2·atan(fovY·0.5)·aspect and then halfWidth = tan(fovX/2)·near;
-// that is neither the horizontal field of view nor the frustum's width. The frustum built by
-// perspective()/infinitePerspective() has halfHeight = tan(fovY/2)·near and
-// halfWidth = tan(fovY/2)·aspect·near, which is what is used here.
+// The near-plane rectangle of [Kuhn 2016, §4.2.1], with the camera basis of gluLookAt
+// (projection.h). Erratum: [Kuhn 2016, §4.2.1] writes fovX = 2·atan(fovY·0.5)·aspect and then
+// halfWidth = tan(fovX/2)·near; that is neither the horizontal field of view nor the frustum's
+// width. The frustum built by perspective()/infinitePerspective() has halfHeight = tan(fovY/2)·near
+// and halfWidth = tan(fovY/2)·aspect·near, which is what is used here.
 std::array<glm::dvec3, 4> nearPlaneCorners(const Camera& camera, double aspect);
 
 OcclusionPyramid makeOcclusionPyramid(const Camera& camera, double aspect, const glm::dvec4& worldLight);
@@ -44,7 +45,7 @@ OcclusionPyramid makeOcclusionPyramid(const Camera& camera, double aspect, const
 // True when `worldBox` meets the pyramid (conservatively). An empty box meets nothing.
 bool intersects(const OcclusionPyramid& pyramid, const Aabb& worldBox);
 
-// 000 §4.3.2: does an occluder with this world bounding box need z-fail?
+// [Kuhn 2016, §4.3.2]: does an occluder with this world bounding box need z-fail?
 bool needsZFail(const Aabb& worldBox, const Camera& camera, double aspect, const glm::dvec4& worldLight);
 
 }  // namespace shadowref

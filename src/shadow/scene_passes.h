@@ -63,8 +63,8 @@ void forEachVertexRange(Renderer* renderer, std::span<const size_t> counts,
 PhongLight toPhongLight(const Light& light);
 PhongMaterial toPhongMaterial(const Material& material);
 
-// 000 §4.3.1: an object is lit by (and casts a shadow for) a light only when a corner or the
-// centre of its bounding box lies within the light's range.
+// [Kuhn 2016, §4.3.1]: an object is lit by (and casts a shadow for) a light only when a corner or
+// the centre of its bounding box lies within the light's range.
 bool withinRange(const Light& light, const Aabb& worldBounds);
 
 // Draws every instance with lighting from `lights` (only those in range of each instance), the
@@ -73,7 +73,7 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
              std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
              DrawKind kind = DrawKind::Lit);
 
-// Ambient light only (step 1 of 000 §3.1): fills the depth buffer.
+// Ambient light only (step 1 of [Kuhn 2016, §3.1]): fills the depth buffer.
 void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
                  std::span<const PreparedInstance> prepared, DrawKind kind = DrawKind::Ambient);
 

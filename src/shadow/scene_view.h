@@ -13,12 +13,12 @@ struct SceneView {
   glm::dmat4 projection{1.0};
   Viewport viewport;
   double aspect = 1.0;
-  bool infinite = false;  // P_inf (000 §3.3): far clipping off
+  bool infinite = false;  // P_inf ([Kuhn 2016, §3.3]): far clipping off
   glm::dvec3 eye{0.0};
 };
 
 // P_inf when the camera's far plane is infinite or `forceInfinite` (shadow volumes extrude to
-// infinity and need it, 000 §3.3); the ordinary frustum otherwise.
+// infinity and need it, [Kuhn 2016, §3.3]); the ordinary frustum otherwise.
 SceneView makeCameraView(const Scene& scene, bool forceInfinite = false);
 
 }  // namespace shadowref

@@ -1,5 +1,5 @@
-// The camera pass's shadow test (002 §3.1, §5.1.4), as a fragment shader calls it: the world
-// position p through the texture matrix T (light_view.h: bias · P_light · V_light, for TSM
+// The camera pass's shadow test ([Hempe 2004, §3.1, §5.1.4]), as a fragment shader calls it: the
+// world position p through the texture matrix T (light_view.h: bias · P_light · V_light, for TSM
 // bias · N_T · P_light · V_light), strq = T · p, then the depth-compare sampler on (s/q, t/q) with
 // r/q against the stored depth D: R ≤ D lit (1), otherwise the compare-fail value.
 #pragma once
@@ -16,17 +16,17 @@ namespace shadowref {
 // strq = T · (p, 1): EYE_LINEAR texgen with the texture matrix, on world coordinates.
 glm::dvec4 shadowCoordinates(const glm::dmat4& T, const glm::dvec3& worldPosition);
 
-// A constant bias against self-shadowing (issue 5; the alternative to polygon offset and back
-// faces only, 002 §3.2 "ein bestimmter Wert zu den Tiefenwerten ... hinzuaddiert"): the seed adds it
-// to the map's depths; subtracting it from R instead is the same comparison, R − bias ≤ D, without
-// touching the map. Applied in homogeneous form, r − bias · q, so the sampler's division gives
-// r/q − bias.
+// A constant bias against self-shadowing (the alternative to polygon offset and back
+// faces only, [Hempe 2004, §3.2] "ein bestimmter Wert zu den Tiefenwerten ... hinzuaddiert"): the
+// thesis adds it to the map's depths; subtracting it from R instead is the same comparison, R −
+// bias ≤ D, without touching the map. Applied in homogeneous form, r − bias · q, so the sampler's
+// division gives r/q − bias.
 glm::dvec4 withConstantBias(const glm::dvec4& strq, double constantBias);
 
 struct ShadowLookup {
   glm::dmat4 textureMatrix{1.0};
   DepthCompareSampler sampler;  // texture, compare func (LEQUAL), compare-fail value (0.4)
-  int pcf = 1;                  // k x k percentage-closer filtering; 1 = nearest (002)
+  int pcf = 1;                  // k x k percentage-closer filtering [Reeves et al. 1987]; 1 = nearest ([Hempe 2004])
   double constantBias = 0.0;
 
   // 1 where lit, failValue where shadowed, between them at PCF edges. Outside the map the

@@ -1,4 +1,4 @@
-// How right a shadow map is (issue 5 "Accuracy, measured"): its shadow test at surface points
+// How right a shadow map is: its shadow test at surface points
 // against the true light visibility there (a shadow ray per pixel, tests/support/oracle).
 #pragma once
 

@@ -22,13 +22,13 @@ namespace shadowref {
 namespace {
 
 // What a shadow-map lookup adds to a fragment's work (FragmentShader::fragmentWork), per light:
-// its matrix, divisions and texel reads, about half a plain fragment's (the outdoor frame per
-// vertex: 52 of about 230 instructions a fragment).
+// its matrix, divisions and texel reads, about half a plain fragment's.
 constexpr int kLookupFragmentWork = 2;
 
-// The camera pass's shader: 002's GL_MODULATE of the lit colour by the compare result, per light:
-// colour = sum over lights of (ambient / n + diffuse_i + specular_i) * factor_i. With one light,
-// as in the documents, that is (ambient + light) * (1 or the compare-fail value).
+// The camera pass's shader: GL_MODULATE of the lit colour by the compare result
+// ([Hempe 2004, §5.1.2]), per light: colour = sum over lights of (ambient / n + diffuse_i +
+// specular_i) * factor_i. With one light, as in the documents, that is (ambient + light) * (1 or
+// the compare-fail value).
 class ShadowMappedShader final : public FragmentShader {
  public:
   ShadowMappedShader(const LightingSetup& setup, std::vector<const LightShadow*> shadows)
@@ -92,8 +92,8 @@ class ShadowMappedShader final : public FragmentShader {
 };
 
 // The camera pass's shader for a Gouraud material: GL_MODULATE as the fixed-function pipeline of
-// 002 does it — each light's share of the ambient plus its diffuse and specular, lit per vertex
-// (gouraudCameraVertices) and interpolated, times that light's compare result per fragment.
+// [Hempe 2004] does it — each light's share of the ambient plus its diffuse and specular, lit per
+// vertex (gouraudCameraVertices) and interpolated, times that light's compare result per fragment.
 // Varyings: the world position (0..2) for the lookup, then each light's colour.
 class ShadowMappedGouraudShader final : public FragmentShader {
  public:
@@ -192,7 +192,8 @@ bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& s
       group.lighting.material = toPhongMaterial(material);
       group.lighting.globalAmbient = scene.ambient;
       group.lighting.eye = view.eye;
-      // A light out of range (000 §4.3.1) contributes nothing but its share of the ambient.
+      // A light out of range ([Kuhn 2016, §4.3.1]) contributes nothing but its share of the
+      // ambient.
       for (size_t l = 0; l < active.size(); ++l)
         group.lighting.lights.push_back(reached[l] ? toPhongLight(active[l]->light) : PhongLight{glm::dvec4(0.0)});
     }
@@ -233,7 +234,7 @@ bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& s
 
 // The light sets of the accumulation frames: frame k holds the k-th of each light's positions.
 // A light without a soft shape is in every frame; its colour is kept, as every frame is a whole
-// picture weighted 1/n (002 §4.2.2).
+// picture weighted 1/n ([Hempe 2004, §4.2.2]).
 std::vector<std::vector<Light>> accumulationFrames(const std::vector<Light>& lights) {
   size_t frames = 1;
   std::vector<std::vector<Light>> expanded;
@@ -250,9 +251,9 @@ std::vector<std::vector<Light>> accumulationFrames(const std::vector<Light>& lig
 }
 
 // --dump shadowmap: each light's map(s) as the camera pass uses them ("L0", "L0.face3"), and for
-// TSM the teaching views of issue 5: "L0" is the warped light view (the scene drawn with N_T as
-// projection, 002 Listing 12), "L0.plain" the same light's unwarped map with the trapezoid drawn
-// over it in black (and a cross at the focus point).
+// TSM the teaching views: "L0" is the warped light view (the scene drawn with N_T as
+// projection, [Hempe 2004, Listing 12]), "L0.plain" the same light's unwarped map with the
+// trapezoid drawn over it in black (and a cross at the focus point).
 void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
                     const std::vector<std::unique_ptr<LightShadow>>& shadows, int threads, FrameResult& result) {
   for (size_t i = 0; i < shadows.size(); ++i) {

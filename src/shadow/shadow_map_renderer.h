@@ -1,11 +1,13 @@
-// Shadow mapping, the whole frame (002 §3.1, §4.1, §4.2, §5; SPEC.md §4):
+// Shadow mapping [Williams 1978], the whole frame ([Hempe 2004, §3.1, §4.1, §4.2, §5]):
 //   1. per light, the depth map from the light: orthographic for a directional light, perspective
 //      for a spot light, six cube faces for a point light (beyond the documents); polygon offset
 //      or back faces only against self-shadowing; for TSM the light's clip space warped by N_T;
 //   2. the camera pass: every fragment's world position through T = bias · (N_T ·) P_light ·
 //      V_light, divided by q, compared R <= D; failing fragments are modulated by the
-//      compare-fail value (002 §5.1.2: GL_MODULATE with GL_TEXTURE_COMPARE_FAIL_VALUE 0.4);
-//   3. soft shadows (002 §4.2, §5.3): the frame rendered once per position on the edge of the
+//      compare-fail value ([Hempe 2004, §5.1.2]: GL_MODULATE with
+//      GL_TEXTURE_COMPARE_FAIL_VALUE 0.4);
+//   3. soft shadows ([Hempe 2004, §4.2, §5.3]): the frame rendered once per position on the edge of
+//   the
 //      square area light, each ACCUMed with weight 1/n, then RETURN.
 #pragma once
 

@@ -1,13 +1,13 @@
-// The shadow volume of one mesh for one light (000 §3.4, §4.3.3; SPEC.md §3): facing, silhouette,
+// The shadow volume of one mesh for one light ([Kuhn 2016, §3.4, §4.3.3]): facing, silhouette,
 // extruded sides and, for z-fail, the caps — as indexed triangles over homogeneous OBJECT-space
 // vertices.
 //
-// Why object space: the front cap must produce bit-equal depths to the scene pass (SPEC.md §3
-// step 2). The scene pass transforms each render vertex (P, 1) with the instance's modelView and
-// the projection (vertex_stage.h); the volume's first n vertices are exactly those positions (the
-// welded positions are the render positions, mesh.h), so drawing the volume with the SAME
-// VertexTransform gives the same clip coordinates. Bring the light into object space instead
-// (lightInObjectSpace in facing.h).
+// Why object space: the front cap must produce bit-equal depths to the scene pass, or LESS
+// would not fail on it and z-fail would miscount. The scene pass transforms each render vertex
+// (P, 1) with the instance's modelView and the projection (vertex_stage.h); the volume's first n
+// vertices are exactly those positions (the welded positions are the render positions, mesh.h), so
+// drawing the volume with the SAME VertexTransform gives the same clip coordinates. Bring the light
+// into object space instead (lightInObjectSpace in facing.h).
 //
 // Caveat for the caller: a world matrix with negative determinant (a mirror) turns the volume
 // inside out in window space, as it does the mesh; flip the front face for such instances.

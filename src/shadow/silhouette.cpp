@@ -8,9 +8,9 @@ namespace shadowref {
 namespace {
 
 // The test shared by Kuhn and Lengyel once an edge knows its triangles: silhouette when exactly
-// one side faces the light, or when an open edge's only triangle does (003, 004). The edge is
-// reported as it runs in the facing triangle: v0 -> v1 in t0, v1 -> v0 in t1 (000 §4.3.3 lines
-// 9-15: "if the first triangle faces away, swap A and B").
+// one side faces the light, or when an open edge's only triangle does ([SV slides], [DSS article]).
+// The edge is reported as it runs in the facing triangle: v0 -> v1 in t0, v1 -> v0 in t1
+// ([Kuhn 2016, §4.3.3] lines 9-15: "if the first triangle faces away, swap A and B").
 void testEdge(uint32_t v0, uint32_t v1, uint32_t t0, uint32_t t1, const std::vector<uint8_t>& facing,
               std::vector<SilhouetteEdge>& out) {
   const bool front0 = facing[t0] != 0;
@@ -37,17 +37,17 @@ int cornerOfEdge(const glm::uvec3& tri, uint32_t a, uint32_t b) {
 
 }  // namespace
 
-// 000 §3.5 (last paragraph) and §4.3.3: one pass over the edges, each knowing both triangles.
+// [Kuhn 2016, §3.5 (last paragraph), §4.3.3]: one pass over the edges, each knowing both triangles.
 void kuhnSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing, std::vector<SilhouetteEdge>& out) {
   out.clear();
   for (const Edge& e : mesh.edges) testEdge(e.v0, e.v1, e.t0, e.t1, facing, out);
 }
 
-// 000 §3.5, Algorithm 1 (Yen Kwoon [YEN02]): every edge of a light-facing triangle is added to
-// the list, or removed when it (or its reverse) is already there. The thesis notes the list search
-// makes this slow on large meshes; here the "list" is a hash table keyed by the unordered vertex
-// pair plus the order of first insertion, so a toggle costs O(1) and the output order is
-// deterministic.
+// [Kuhn 2016, §3.5, Algorithm 1] (Yen Kwoon [Yen Kwoon 2002]): every edge of a light-facing
+// triangle is added to the list, or removed when it (or its reverse) is already there. The thesis
+// notes the list search makes this slow on large meshes; here the "list" is a hash table keyed by
+// the unordered vertex pair plus the order of first insertion, so a toggle costs O(1) and the
+// output order is deterministic.
 void yenKwoonSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing, std::vector<SilhouetteEdge>& out,
                         SilhouetteWorkspace& ws) {
   out.clear();
@@ -95,10 +95,10 @@ void yenKwoonSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing, st
   }
 }
 
-// 000 §3.5, Algorithm 2 (Kilgard [KILG02]): every triangle knows its neighbours; for each
-// light-facing triangle, an edge whose neighbour does not face the light (or that has none) is a
-// silhouette edge. The neighbour table is derived from the edge list (O(edges)); Kilgard keeps it
-// with the mesh.
+// [Kuhn 2016, §3.5, Algorithm 2] (Kilgard [Everitt & Kilgard 2002]): every triangle knows its
+// neighbours; for each light-facing triangle, an edge whose neighbour does not face the light (or
+// that has none) is a silhouette edge. The neighbour table is derived from the edge list
+// (O(edges)); Kilgard keeps it with the mesh.
 void kilgardSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing, std::vector<SilhouetteEdge>& out,
                        SilhouetteWorkspace& ws) {
   out.clear();
@@ -121,11 +121,11 @@ void kilgardSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing, std
   }
 }
 
-// 000 §3.5 (Lengyel [LENG02], "The Mechanics of Robust Stencil Shadows"): from the triangle list
-// alone. Pass 1 creates an edge for every triangle edge i1 -> i2 with i1 < i2 and records its
-// triangle; pass 2 finds, for every triangle edge i1 -> i2 with i1 > i2, the edge i2 -> i1 and
-// records the triangle as its neighbour. Per-vertex linked lists keep the search local, O(edges)
-// for meshes of bounded vertex degree. An i1 > i2 edge without a partner is an open edge.
+// [Kuhn 2016, §3.5] (Lengyel [Lengyel 2002], "The Mechanics of Robust Stencil Shadows"): from the
+// triangle list alone. Pass 1 creates an edge for every triangle edge i1 -> i2 with i1 < i2 and
+// records its triangle; pass 2 finds, for every triangle edge i1 -> i2 with i1 > i2, the edge i2 ->
+// i1 and records the triangle as its neighbour. Per-vertex linked lists keep the search local,
+// O(edges) for meshes of bounded vertex degree. An i1 > i2 edge without a partner is an open edge.
 // Then the edges are tested as in Kuhn.
 void lengyelSilhouette(const Mesh& mesh, const std::vector<uint8_t>& facing, std::vector<SilhouetteEdge>& out,
                        SilhouetteWorkspace& ws) {

@@ -1,25 +1,26 @@
-// Silhouette edges of a mesh seen from a light (000 §3.5; 003; 004): the edges between a
-// light-facing and a light-averted triangle, plus open edges whose one triangle faces the light.
+// Silhouette edges of a mesh seen from a light ([Kuhn 2016, §3.5]; [SV slides]; [DSS article]): the
+// edges between a light-facing and a light-averted triangle, plus open edges whose one triangle
+// faces the light.
 //
 // Four algorithms from the documents, selectable by SilhouetteAlgorithm. All of them read the same
 // facing flags (facing.h) and report each edge oriented as it runs in its light-facing triangle,
 // so on closed and on open manifold meshes they return the same set of oriented edges; only the
 // ORDER of the list differs. Extrusion (extrusion.h) relies on that orientation.
 //
-//  - Kuhn (000 §3.5, §4.3.3; the default): one pass over the edge list of 000 §4.3.5, whose edges
-//    know both triangles.
-//  - Yen Kwoon (000 §3.5 Algorithm 1): the edges of every light-facing triangle are toggled in a
-//    list; an edge seen twice cancels, the silhouette remains.
-//  - Kilgard (000 §3.5 Algorithm 2): per light-facing triangle, each edge whose neighbour does not
-//    face the light (or has no neighbour).
-//  - Lengyel (000 §3.5): two passes over the triangles build an edge list of their own (first pass
-//    creates every edge where i1 < i2, second pass attaches the neighbour of every edge where
-//    i1 > i2), then the edges are tested.
+//  - Kuhn ([Kuhn 2016, §3.5, §4.3.3]; the default): one pass over the edge list of
+//    [Kuhn 2016, §4.3.5], whose edges know both triangles.
+//  - Yen Kwoon ([Kuhn 2016, §3.5 Algorithm 1]): the edges of every light-facing triangle are
+//    toggled in a list; an edge seen twice cancels, the silhouette remains.
+//  - Kilgard ([Kuhn 2016, §3.5 Algorithm 2]): per light-facing triangle, each edge whose neighbour
+//    does not face the light (or has no neighbour).
+//  - Lengyel ([Kuhn 2016, §3.5]): two passes over the triangles build an edge list of their own
+//    (first pass creates every edge where i1 < i2, second pass attaches the neighbour of every edge
+//    where i1 > i2), then the edges are tested.
 //
-// Note: 000's pseudocode for Yen Kwoon and Kilgard walks the triangles that do NOT face the light,
-// while its prose (and 003) walks the light-facing ones. On a closed mesh the two give the same
-// edges (reversed); only the light-facing walk also finds open edges (003, 004), so it is the one
-// implemented.
+// Note: the pseudocode of [Kuhn 2016, §3.5] for Yen Kwoon and Kilgard walks the triangles that do
+// NOT face the light, while its prose (and [SV slides]) walks the light-facing ones. On a closed
+// mesh the two give the same edges (reversed); only the light-facing walk also finds open edges
+// ([SV slides], [DSS article]), so it is the one implemented.
 //
 // Non-manifold edges (three or more triangles) are outside what the documents define: the edge
 // list keeps only two of their triangles, and the algorithms may then disagree.

@@ -48,8 +48,9 @@ std::vector<RenderState> volumePassStates(const RenderState& base, StencilCounti
     s.stencil[BackFacing] = countingFaceState(counting, BackFacing, options.wrap);
     return {s};
   }
-  // Two passes (000 §3.2, 003): each draws one kind of face, culling the other; both stencil
-  // slots carry the op so the result does not depend on which slot the rasterizer consults.
+  // Two passes ([Kuhn 2016, §3.2], [SV slides]): each draws one kind of face, culling the other;
+  // both stencil slots carry the op so the result does not depend on which slot the rasterizer
+  // consults.
   const Facing first = incrementingFace(counting);
   const Facing second = first == FrontFacing ? BackFacing : FrontFacing;
   std::vector<RenderState> passes;

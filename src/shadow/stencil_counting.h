@@ -1,15 +1,16 @@
 // Render states of the volume pass: how the stencil buffer counts shadow-volume faces
-// (000 §3.2, §4.3.1; 003; SPEC.md §3 step 2).
+// ([Kuhn 2016, §3.2, §4.3.1]; [SV slides]).
 //
 //  - z-pass: front faces INCR where the depth test passes, back faces DECR.
-//  - z-fail (Carmack's reverse): back faces INCR where the depth test fails, front faces DECR.
+//  - z-fail (Carmack's reverse [Carmack 2000]; [Everitt & Kilgard 2002]): back faces INCR where the
+//    depth test fails, front faces DECR.
 // Common to both: stencil test ALWAYS (only depth decides), depth func LESS, no depth writes, no
-// colour writes. Wrapping ops (INCR_WRAP / DECR_WRAP, 003) let counts survive more than 255
+// colour writes. Wrapping ops (INCR_WRAP / DECR_WRAP, [SV slides]) let counts survive more than 255
 // volumes; the saturating INCR / DECR exist to show the overflow.
 //
 // Either one pass with two-sided stencil (cull nothing; front and back state differ), or two
-// passes with culling as 003 draws them: first the faces that increment, then the faces that
-// decrement. The increment pass goes first so saturating DECR cannot clamp at 0 before the
+// passes with culling as [SV slides] draws them: first the faces that increment, then the faces
+// that decrement. The increment pass goes first so saturating DECR cannot clamp at 0 before the
 // matching INCR arrived.
 #pragma once
 

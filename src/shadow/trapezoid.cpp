@@ -113,7 +113,7 @@ Trapezoid computeTrapezoid(const std::array<glm::dvec4, 8>& clip, double focusRe
       return standard;
     }
 
-  // 1. (002 §4.1.2 step 1) the corners in light post-projective x-y.
+  // 1. ([Hempe 2004, §4.1.2 step 1]) the corners in light post-projective x-y.
   std::array<glm::dvec2, 8> p;
   for (size_t i = 0; i < 8; ++i) p[i] = projectXY(clip[i]);
   // 2. The centre line. The plane centres are averaged before the division by w, so they are
@@ -187,7 +187,7 @@ bool fitSideLinesFromApex(Trapezoid& tz, std::span<const glm::dvec2> points, con
   tz.t[2] = tz.apex + aTop * d + leftSlope * aTop * n;     // top, left
   tz.t[3] = tz.apex + aTop * d + rightSlope * aTop * n;    // top, right
 
-  // 6. N_T (002 §4.1.2, 8 steps).
+  // 6. N_T ([Hempe 2004, §4.1.2], 8 steps).
   tz.NT = trapezoidToSquare({tz.t[0], tz.t[1], tz.t[2], tz.t[3]});
   return leftSlope > rightSlope;
 }

@@ -1,4 +1,4 @@
-// Teaching view of TSM (issue 5 "Teaching views"; 002 Abb. 4.x): the trapezoid drawn over the
+// Teaching view of TSM ([Hempe 2004, §4.1]): the trapezoid drawn over the
 // plain (unwarped) light view, so one sees which part of the light's view the warped map spends
 // its texels on.
 #pragma once

@@ -6,8 +6,8 @@ namespace shadowref {
 
 namespace {
 
-// The matrices below are written row by row as 002 §4.1.2 prints them (for column vectors);
-// glm stores columns, hence the transpose.
+// The matrices below are written row by row as [Hempe 2004, §4.1.2] prints them (for column
+// vectors); glm stores columns, hence the transpose.
 glm::dmat4 fromRows(const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4& r2, const glm::dvec4& r3) {
   return glm::transpose(glm::dmat4(r0, r1, r2, r3));
 }

@@ -1,16 +1,16 @@
-// N_T: the projective map of a trapezoid onto the square [−1, 1]² (002 §4.1.2, after Martin &
-// Tan 2004), built as the 8 steps of the seed, N_T = S2 · T3 · N · S1 · H · T2 · R · T1, one
-// function per step. Each step computes its parameter u (and v) from the trapezoid corners
-// carried through the product of the steps before it, exactly as the seed writes.
+// N_T: the projective map of a trapezoid onto the square [−1, 1]² ([Hempe 2004, §4.1.2], after
+// [Martin & Tan 2004]), built as Hempe's 8 steps, N_T = S2 · T3 · N · S1 · H · T2 · R · T1,
+// one function per step. Each step computes its parameter u (and v) from the trapezoid corners
+// carried through the product of the steps before it, exactly as the thesis writes.
 //
 // Corners: t0, t1 on the base line (the long, far side), t2, t3 on the top line (the short,
 // near side); t0–t3 and t1–t2 are the side lines. N_T maps
 //   t0 -> (−1, −1),  t1 -> (+1, −1),  t2 -> (+1, +1),  t3 -> (−1, +1)
-// (top line to y = +1, base line to y = −1, as the 80 % rule of 002 §4.1.2 has it). When
+// (top line to y = +1, base line to y = −1, as the 80 % rule of [Hempe 2004, §4.1.2] has it). When
 // t0, t1, t2, t3 run counter-clockwise, N_T preserves orientation on the trapezoid, so face
 // culling in a map pass drawn through N_T keeps its meaning.
 //
-// The z row of N_T is (0, 0, 1, 0) as in the seed: z is carried, but divided by the new w after
+// The z row of N_T is (0, 0, 1, 0) as in the thesis: z is carried, but divided by the new w after
 // the projection. For an orthographic light that w is constant along each light ray, so depth
 // order along a ray is kept, and z/w is affine in window coordinates (N_T is projective), so the
 // rasterizer's linear depth interpolation stays exact; only the depth scale varies per texel.
@@ -34,7 +34,7 @@ glm::dmat4 trapezoidStepR(const TrapezoidCorners& t);
 glm::dmat4 trapezoidStepT2(const TrapezoidCorners& t, const glm::dmat4& soFar);
 // Step 4: H shears the trapezoid symmetric about the y axis: u = (T2·R·T1·(t2 + t3)) / 2,
 // H = [[1, −x_u / y_u], [0, 1]].
-// Seed erratum: 002 prints H with 1/y_u in row 2 (and calls the shear "gesichert", for
+// Erratum: [Hempe 2004, §4.1.2] prints H with 1/y_u in row 2 (and calls the shear "gesichert", for
 // "geschert"). Martin & Tan's H has 1 there. The product is the same either way — step 5 takes
 // its u after H and scales y by 1/y_u, so the two variants differ only in which step scales y —
 // but 1 keeps H a pure shear, as its name says.
@@ -55,12 +55,14 @@ glm::dmat4 trapezoidStepS2(const TrapezoidCorners& t, const glm::dmat4& soFar);
 // The intersection i of the side lines t0–t3 and t1–t2 (the trapezoid's apex q).
 glm::dvec2 sideLineIntersection(const TrapezoidCorners& t);
 
-// N_T = S2 · T3 · N · S1 · H · T2 · R · T1 (002 §4.1.2). The side lines must not be parallel.
+// N_T = S2 · T3 · N · S1 · H · T2 · R · T1 ([Hempe 2004, §4.1.2]). The side lines must not be
+// parallel.
 glm::dmat4 trapezoidToSquare(const TrapezoidCorners& t);
 
 // The affine map of a parallelogram (rectangle) onto [−1, 1]² with the same corner convention,
 // t0 -> (−1, −1), t1 -> (+1, −1), t3 -> (−1, +1) (t2 follows): the limit of trapezoidToSquare
-// when the side lines become parallel, and the bounding-rectangle fallback (002 Listing 10e).
+// when the side lines become parallel, and the bounding-rectangle fallback
+// ([Hempe 2004, Listing 10e]).
 glm::dmat4 parallelogramToSquare(const TrapezoidCorners& t);
 
 }  // namespace shadowref

@@ -25,8 +25,8 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 // The counting an object gets: fixed by the method, or McGuire's choice for `auto`
-// (000 §4.2.1, §4.3.2): z-fail only where the object's box reaches into the occlusion pyramid
-// between the light and the near plane, where z-pass could miscount.
+// ([Kuhn 2016, §4.2.1, §4.3.2]): z-fail only where the object's box reaches into the occlusion
+// pyramid between the light and the near plane, where z-pass could miscount.
 StencilCounting countingFor(ShadowMethod method, const Instance& inst, const Scene& scene, const SceneView& view,
                             const Light& light) {
   if (method == ShadowMethod::ZPass) return StencilCounting::ZPass;
@@ -108,8 +108,7 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
   }
   if (volumes.size() < casters.size()) volumes.resize(casters.size());
   // The largest casters' volumes first: the threads take the builds one at a time, and one that
-  // starts a large build last keeps the other waiting (the pumpkins' six pumpkins came after the
-  // porch's boards, and 6 % of the threads' time in this run went unused).
+  // starts a large build last keeps the other waiting.
   std::vector<size_t> largestFirst(casters.size());
   std::iota(largestFirst.begin(), largestFirst.end(), size_t(0));
   std::stable_sort(largestFirst.begin(), largestFirst.end(), [&](size_t a, size_t b) {
@@ -139,7 +138,8 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
   return totals;
 }
 
-// Teaching views: 003's front faces red / back faces blue, or 004's translucent red volumes.
+// Teaching views: front faces red / back faces blue ([SV slides]), or translucent red volumes
+// ([DSS article]).
 void drawVolumeView(Renderer& renderer, const RenderState& base, const Scene& scene, const SceneView& view,
                     std::span<const PreparedInstance> prepared, const std::vector<Light>& lights, ShadowMethod method,
                     VolumeViewMode mode, VolumeDraw& scratch) {
@@ -199,7 +199,7 @@ RenderState volumeBaseState(const SceneView& view) {
 
 void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
                          Renderer& renderer) {
-  // Volumes reach infinity: P_inf, no far clipping (000 §3.3).
+  // Volumes reach infinity: P_inf, no far clipping ([Kuhn 2016, §3.3]).
   const SceneView view = makeCameraView(scene, true);
   const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
   const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
@@ -215,7 +215,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
 
   const RenderState base = volumeBaseState(view);
 
-  std::vector<Light> lights;  // soft lights expanded (000 §3.6)
+  std::vector<Light> lights;  // soft lights expanded ([Kuhn 2016, §3.6])
   for (const Light& light : scene.lights)
     for (const Light& l : expandSoftLight(light)) lights.push_back(l);
 

@@ -21,7 +21,7 @@ std::string runText(const std::string& commit, double twoThreads0, double twoThr
   t.holds("buffers of 1, 2 and 8 threads", {true, identical1}, "identical", "DIFFERENT");
   t.single("linear in houses, 1 thread: R2", fit, 0.95);
   t.information("unequal: per pixel, x llvmpipe fixed 1t", {0.91, 2.3});
-  return "commit: " + commit + "\nnproc: 2\nbench/vs-mesa: shadowref against Mesa through OSMesa\n\nIssue 7's targets\n" +
+  return "commit: " + commit + "\nnproc: 2\nbench/vs-mesa: shadowref against Mesa through OSMesa\n\nThe speed targets\n" +
          t.text() + "\nCSV: bench/results/vs-mesa.csv\n";
 }
 
@@ -78,7 +78,7 @@ TEST_CASE("tally: each figure met in how many runs, two threads / one by the hos
   auto row = [&](const std::string& label, const std::string& room, const std::string& city) {
     return targetLine(label, {room, city});
   };
-  CHECK(text.find("Issue 7's targets over 3 runs") == 0);
+  CHECK(text.find("The speed targets over 3 runs") == 0);
   CHECK(text.find(targetLine("target", {"room", "city-64"})) != std::string::npos);
   CHECK(text.find(row("per vertex, 1 thread: x llvmpipe >= 1", "3/3", "0/3")) != std::string::npos);
   CHECK(text.find(row("per vertex: 2 threads / 1 >= 1.8", "2/3", "1/3")) != std::string::npos);

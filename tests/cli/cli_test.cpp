@@ -1,4 +1,4 @@
-// The command line as a user meets it (SPEC.md §5): exit status 0 / 1 / 2, errors as
+// The command line as a user meets it: exit status 0 / 1 / 2, errors as
 // file:line:col on stderr, output files complete or absent.
 #include <catch2/catch.hpp>
 

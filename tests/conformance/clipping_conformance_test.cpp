@@ -1,5 +1,6 @@
 // Near-plane clipping and points at infinity (w = 0 in eye space) under the infinite projection
-// P_inf (000 §3.3), built on the CPU so both implementations get the same clip coordinates.
+// P_inf ([Kuhn 2016, §3.3]), built on the CPU so both implementations get the same clip
+// coordinates.
 #include "conformance/case_builder.h"
 
 #include "raster/projection.h"

@@ -25,7 +25,7 @@ struct CaseResult {
 
   size_t stencilMismatches() const { return stencilMismatchOnEdge + stencilMismatchOffEdge; }
   double stencilAgreement() const { return pixels ? 1.0 - double(stencilMismatches()) / double(pixels) : 1.0; }
-  // The expectation of issue 2: stencil identical on >= 99.9 % with differences only at edges,
+  // The conformance expectation: stencil identical on >= 99.9 % with differences only at edges,
   // depth within one 24-bit unit, colour within the case's tolerance (one 1/255 per pass).
   bool meetsIssueExpectation() const {
     return stencilAgreement() >= 0.999 && stencilMismatchOffEdge == 0 && maxDepthDiff <= 1 &&

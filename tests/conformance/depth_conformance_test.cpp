@@ -1,5 +1,5 @@
 // Depth test, depth mask, polygon offset and depth clamp against Mesa, in shadowref's 24-bit depth
-// mode (issue 2, "Conformance against a real OpenGL").
+// mode.
 #include <iostream>
 
 #include "conformance/case_builder.h"
@@ -88,7 +88,7 @@ double measuredOffsetUnits(const Readback& with, const Readback& without) {
 
 TEST_CASE("polygon offset: the factor term matches Mesa, Mesa's units term is r = 2 / (2^24 - 1)",
           "[conformance][depth][offset]") {
-  // The slope term factor * max(|dz/dx|, |dz/dy|) (GL 1.1 §3.5.5).
+  // The slope term factor * max(|dz/dx|, |dz/dy|) ([GL 2.1, §3.5.5]).
   for (double factor : {1.0, -2.0, 4.0}) checkAgreement(runCase(polygonOffsetScenario(factor, 0.0, 1.0 / 4096)));
 
   // The units term: shadowref's r for unorm24 is one code, 1 / (2^24 - 1)

@@ -1,5 +1,5 @@
 // Culling x front face, scissor, colour mask, blending, clears and the accumulation buffer
-// against Mesa (issue 2, "Conformance against a real OpenGL").
+// against Mesa.
 #include "conformance/case_builder.h"
 
 using namespace shadowref;

@@ -1,4 +1,4 @@
-// Mesa's OSMesa as the real OpenGL the conformance cases are compared with (issue 2): a legacy
+// Mesa's OSMesa as the real OpenGL the conformance cases are compared with: a legacy
 // GL 2.1 context with RGBA8 colour, 24-bit depth, 8-bit stencil and a 16-bit accumulation buffer.
 // The gallium driver (softpipe or llvmpipe) is chosen by GALLIUM_DRIVER before the first context.
 #pragma once

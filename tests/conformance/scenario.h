@@ -56,13 +56,14 @@ struct Scenario {
   // Colour may differ by this much (in units of 1/255): 1 for a single write; additive blending
   // of n passes rounds to 8 bits after each pass in Mesa, so n (see docs/conformance.md).
   double colorTolerance255 = 1.0;
-  // Depth may differ by this many 24-bit units. Issue 2 expects 1; Mesa interpolates depth in
+  // Depth may differ by this many 24-bit units. The aim is 1; Mesa interpolates depth in
   // float32 (one ulp is one 24-bit unit for z in [0.5, 1)) and truncates when converting, so it
   // is up to 2 units from the exact value that shadowref rounds to ("depth is exact" test,
   // docs/conformance.md §Depth precision).
   uint32_t depthTolerance = 2;
-  // Fraction of pixels whose stencil must be identical: 0.999 as issue 2 expects. A case lowers
-  // it only together with a `note` naming the documented cause (docs/conformance.md).
+  // Fraction of pixels whose stencil must be identical: 0.999, which leaves room only for edge
+  // pixels. A case lowers it only together with a `note` naming the documented cause
+  // (docs/conformance.md).
   double minStencilAgreement = 0.999;
   std::string note;
 };

@@ -1,6 +1,6 @@
 // Stencil test and stencil update against Mesa: every func with ref/mask, every op on each of
 // sfail / dpfail / dppass (saturation and wrap at 0 and 255), write mask, two-sided stencil, and
-// triangle soups counted with INCR_WRAP (issue 2, "Conformance against a real OpenGL").
+// triangle soups counted with INCR_WRAP.
 #include "conformance/case_builder.h"
 
 using namespace shadowref;

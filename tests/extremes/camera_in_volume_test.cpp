@@ -1,4 +1,4 @@
-// The camera on a shadow-volume face and inside a volume (issue 6; 000 §3.4, Abb. 3.3): z-pass
+// The camera on a shadow-volume face and inside a volume ([Kuhn 2016, §3.4, Fig. 3.3]): z-pass
 // counts from the near plane and misses the volumes the near plane starts in; z-fail counts from
 // infinity and does not care where the camera is.
 //

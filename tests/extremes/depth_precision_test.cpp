@@ -1,14 +1,14 @@
-// Depth precision of P_inf against a finite far plane (issue 6; docs/numerics.md, "Depth
+// Depth precision of P_inf against a finite far plane (docs/numerics.md, "Depth
 // precision"), measured on the depth codes the pipeline stores (depth_code.h).
 //
 // Window depth for a point at eye distance d (glDepthRange [0, 1]):
 //   finite far f:  z_w = f / (f − n) · (1 − n / d)
-//   P_inf:         z_w = 1 − n / d                          (000 §3.3)
+//   P_inf:         z_w = 1 − n / d                          ([Kuhn 2016, §3.3])
 // so dz_w/dd differs by the constant factor (f − n) / f. A fixed-point buffer (unorm24) has
 // uniformly spaced codes and therefore resolves exactly (f − n) / f as many depths in every
-// distance interval under P_inf: for n = 1, f = 100 that is 99 %, the "about 1 %" of 000 §3.3.
-// The same 1 % appears a second way: P_inf spends the codes of z_w in [1 − n/f, 1), n/f of them,
-// on the distances beyond the old far plane.
+// distance interval under P_inf: for n = 1, f = 100 that is 99 %, the "about 1 %" of
+// [Kuhn 2016, §3.3]. The same 1 % appears a second way: P_inf spends the codes of z_w in
+// [1 − n/f, 1), n/f of them, on the distances beyond the old far plane.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -40,7 +40,7 @@ double codeRatio(const Interval& i, DepthFormat format) {
 }  // namespace
 
 TEST_CASE("unorm24, near 1: P_inf resolves (f - n) / f = 99 % of the depths a far plane at 100 resolves, in every "
-          "distance interval (000 §3.3's 1 % holds exactly)", "[extremes]") {
+          "distance interval (the 1 % of [Kuhn 2016, §3.3] holds exactly)", "[extremes]") {
   const glm::dmat4 finite = perspective(60.0, 1.0, 1.0, 100.0);
   for (const Interval& i : kIntervals) {
     const double n = double(codesBetween(finite, i.d0, i.d1, DepthFormat::Unorm24));
@@ -126,11 +126,11 @@ TEST_CASE("Finite far plane 1e2 ... 1e9: the unshadowed box-on-ground shows the 
 
 TEST_CASE("P_inf (epsilon = 0) puts every point at infinity at depth exactly 1, the epsilon form at 1 - epsilon/2",
           "[extremes]") {
-  // Clip z and w of a w = 0 eye-space point are both -z_e (000 §3.3), so z/w = 1 exactly in the
-  // double-precision pipeline; a GPU needs the epsilon form because float rounding can push it past
-  // 1 and the far plane would clip it (here clipFar is off for P_inf and depth is double until
-  // stored, so epsilon = 0 is safe). With epsilon the back cap passes LESS against a cleared 1.0,
-  // which z-fail counting must then not rely on.
+  // Clip z and w of a w = 0 eye-space point are both -z_e ([Kuhn 2016, §3.3]), so z/w = 1 exactly
+  // in the double-precision pipeline; a GPU needs the epsilon form because float rounding can push
+  // it past 1 and the far plane would clip it (here clipFar is off for P_inf and depth is double
+  // until stored, so epsilon = 0 is safe). With epsilon the back cap passes LESS against a cleared
+  // 1.0, which z-fail counting must then not rely on.
   Framebuffer fb(32, 32);
   Renderer renderer(fb);
   RenderState state;

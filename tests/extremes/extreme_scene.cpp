@@ -68,7 +68,7 @@ Scene similar(const Scene& scene, double scale, const glm::dvec3& offset) {
 
 oracle::OracleImage castFor(const Scene& scene, size_t light) {
   oracle::OracleOptions options;
-  options.forceInfiniteProjection = true;  // the volume renderer draws with P_inf (000 §3.3)
+  options.forceInfiniteProjection = true;  // the volume renderer draws with P_inf ([Kuhn 2016, §3.3])
   return oracle::castOracle(scene, scene.lights.at(light), options);
 }
 
@@ -95,7 +95,7 @@ Agreement compare(std::span<const uint8_t> stencil, const oracle::OracleImage& i
       }
       if (img.nearEdge[i]) continue;
       ++a.compared;
-      // An 8-bit wrapping stencil holds the count modulo 256 (INCR_WRAP / DECR_WRAP, 003).
+      // An 8-bit wrapping stencil holds the count modulo 256 (INCR_WRAP / DECR_WRAP, [SV slides]).
       if (stencil[i] == uint8_t(counts[i] & 0xFF)) continue;
       if (a.countMismatch++ == 0) {
         std::ostringstream s;

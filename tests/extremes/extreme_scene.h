@@ -1,4 +1,4 @@
-// Scenes and comparisons shared by the extremes suite (issue 6, "The extremes, as tests").
+// Scenes and comparisons shared by the extremes suite.
 //
 // Every extreme starts from one small, hand-checkable scene — a box on a ground slab under a point
 // light — and pushes one parameter to its limit (near plane, translation, scale, light position,

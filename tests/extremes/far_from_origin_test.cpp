@@ -1,4 +1,4 @@
-// The whole scene moved far from the origin or rescaled (issue 6; docs/numerics.md, "Translation
+// The whole scene moved far from the origin or rescaled (docs/numerics.md, "Translation
 // and scale").
 //
 // The pipeline is double precision up to the depth code: model-view = view · world is formed in

@@ -1,8 +1,9 @@
-// The light at the edge of what the volume construction handles (issue 6; docs/numerics.md,
+// The light at the edge of what the volume construction handles (docs/numerics.md,
 // "Light placement"): almost on a surface, exactly on it, inside a closed mesh, grazing.
 //
-// Facing is the sign of N · (L − V) (000 §4.3.4, shadow/facing.h); these cases put that sign at
-// 0 or within rounding of it, and put volume sides within rounding of the surfaces they shade.
+// Facing is the sign of N · (L − V) ([Kuhn 2016, §4.3.4], shadow/facing.h); these cases put that
+// sign at 0 or within rounding of it, and put volume sides within rounding of the surfaces they
+// shade.
 //
 // The oracle builds its volumes with the project's own facing and extrusion (world_volumes.h), so
 // its COUNT shares any flaw of the construction; its shadow rays (`lit`) do not. Where a grazing
@@ -99,14 +100,15 @@ TEST_CASE("A light 1e-9 above the ground: the box's shadow runs almost parallel 
 TEST_CASE("A light exactly on the ground's top face is a documented limit: the strict facing test leaves the "
           "volume open and every lit box pixel comes out shadowed", "[extremes]") {
   // A documented limit (docs/numerics.md, "Light placement"), pinned so that a change of the facing
-  // rule shows up here and in the docs together. SPEC.md §3 and 000 §4.3.4 define facing as the
-  // strict N · (L − V) > 0; counting ties as facing (>= 0) repairs this case but changes the
-  // silhouette of every face parallel to a directional light, which the silhouette tests pin. With the
-  // strict N · (L − V) > 0 the top face, which contains L, counts as averted, every face of the
-  // slab goes into the back cap, and the back cap — the slab projected from a point on it — covers
-  // the lower half of the sphere at infinity with nothing closing it along y = 0: every camera ray
-  // that ends below the horizon gets +1, and the lit faces of the box above the ground turn dark.
-  // (The ground's top face itself has N · L = 0: shadowed or not, it gets no diffuse light.)
+  // rule shows up here and in the docs together. Facing is the strict N · (L − V) > 0
+  // (shadow/facing.h; [Kuhn 2016, §4.3.4] lets ties face); counting ties as facing (>= 0) repairs
+  // this case but changes the silhouette of every face parallel to a directional light, which the
+  // silhouette tests pin. With the strict N · (L − V) > 0 the top face, which contains L, counts as
+  // averted, every face of the slab goes into the back cap, and the back cap — the slab projected
+  // from a point on it — covers the lower half of the sphere at infinity with nothing closing it
+  // along y = 0: every camera ray that ends below the horizon gets +1, and the lit faces of the box
+  // above the ground turn dark. (The ground's top face itself has N · L = 0: shadowed or not, it
+  // gets no diffuse light.)
   const Scene scene = withPointLight({2.0, 0.0, 1.0});
   const FrameResult frame = renderStencil(scene, ShadowMethod::ZFail);
   const oracle::OracleImage img = castFor(scene);
@@ -150,7 +152,8 @@ TEST_CASE("A light inside a closed box: every face of the box is averted, the ba
   CHECK(zfailShaded == surface);
   CHECK(groundShadowedByOracle == ground);
   // The camera is inside this volume (all space outside the box) and z-pass draws no caps and has
-  // no sides of the box to count: one short of the truth everywhere (000 §3.4), the ground lit.
+  // no sides of the box to count: one short of the truth everywhere ([Kuhn 2016, §3.4]), the ground
+  // lit.
   CHECK(p.countMismatch == 0);  // it counts what the oracle's near-plane count says: 0 on surfaces
   CHECK(zpassLitGround == ground);
 }

@@ -1,10 +1,10 @@
 // The near plane pushed towards 0 under P_inf, and a finite far plane pushed out to 1e9
-// (issue 6; docs/numerics.md, "Near plane" and "Far plane").
+// (docs/numerics.md, "Near plane" and "Far plane").
 //
-// Window depth under P_inf is z_w = 1 - n/d (000 §3.3) for a point at eye distance d: every
-// halving of the near plane n squeezes the whole scene twice as close to z_w = 1, where a float32
-// depth buffer has only 2^-24 between codes. The rasterizer computes depth in double and rounds
-// only when it stores the code (framebuffer.h), so what breaks is the depth buffer, not the
+// Window depth under P_inf is z_w = 1 - n/d ([Kuhn 2016, §3.3]) for a point at eye distance d:
+// every halving of the near plane n squeezes the whole scene twice as close to z_w = 1, where a
+// float32 depth buffer has only 2^-24 between codes. The rasterizer computes depth in double and
+// rounds only when it stores the code (framebuffer.h), so what breaks is the depth buffer, not the
 // arithmetic: a box 3 ... 12 units away spans about (n/3 - n/12) / 2^-24 codes.
 #include <catch2/catch.hpp>
 

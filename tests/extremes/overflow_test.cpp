@@ -1,11 +1,11 @@
-// 300 overlapping shadow volumes in an 8-bit stencil (issue 6; docs/numerics.md, "Stencil
+// 300 overlapping shadow volumes in an 8-bit stencil (docs/numerics.md, "Stencil
 // overflow"; scenes/overflow.yaml: 256 big plates under 44 small ones, one point light).
 //
-// Wrapping ops (INCR_WRAP / DECR_WRAP, 003) keep every count modulo 256, so the stencil is the
-// oracle's count mod 256 everywhere; the shadow test (stencil == 0 is lit) is then wrong exactly
-// where the count is a non-zero multiple of 256. Saturating ops (INCR / DECR) lose the count as
-// soon as it leaves [0, 255]; in two-sided stencil the increments and decrements of one pixel
-// arrive in primitive order, so a DECR can clamp at 0 before its INCR arrives.
+// Wrapping ops (INCR_WRAP / DECR_WRAP, [SV slides]) keep every count modulo 256, so the stencil is
+// the oracle's count mod 256 everywhere; the shadow test (stencil == 0 is lit) is then wrong
+// exactly where the count is a non-zero multiple of 256. Saturating ops (INCR / DECR) lose the
+// count as soon as it leaves [0, 255]; in two-sided stencil the increments and decrements of one
+// pixel arrive in primitive order, so a DECR can clamp at 0 before its INCR arrives.
 #include <span>
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
 // Degenerate, sliver and huge triangles, and vertices with w = 0 or w near 0, at the raster level
-// (issue 6; docs/numerics.md, "Triangles"; SPEC.md §1: w = 0 vertices are legal input, and
-// triangles that share an edge cover every pixel on it exactly once).
+// (docs/numerics.md, "Triangles"): w = 0 vertices are legal input, and triangles that share an
+// edge cover every pixel on it exactly once, which stencil counting depends on.
 //
 // Every test counts coverage with stencil INCR on a 64 x 64 framebuffer (raster_harness.h), so a
 // pixel covered twice or missed shows as a 2 or a 0.

@@ -1,5 +1,5 @@
-// glAccum (GL 2.1 §4.2.4; 002 §4.2.2): ACCUM, LOAD, RETURN, MULT, ADD on whole pixels. Values are
-// dyadic so every expected float is exact.
+// glAccum ([GL 2.1, §4.2.4]; [Hempe 2004, §4.2.2]): ACCUM, LOAD, RETURN, MULT, ADD on whole pixels.
+// Values are dyadic so every expected float is exact.
 #include <catch2/catch.hpp>
 
 #include "raster/accumulation.h"
@@ -84,7 +84,7 @@ TEST_CASE("RETURN respects the colour mask and the scissor box", "[raster][accum
   CHECK(fb.colorAt(0, 0) == glm::vec4(0.25f, 0.25f, 1.0f, 0.5f));
 }
 
-TEST_CASE("16 ACCUMs of weight 1/16 then RETURN average the frames (002 §4.2.2)", "[raster][accum]") {
+TEST_CASE("16 ACCUMs of weight 1/16 then RETURN average the frames ([Hempe 2004, §4.2.2])", "[raster][accum]") {
   Framebuffer fb(1, 1);
   const RenderState s = fullViewportState(fb);
   clearAccum(fb, s, glm::vec4(0.0f));

@@ -1,4 +1,4 @@
-// glClear semantics (GL 2.1 §4.2.3): clear values clamped to the buffer's range, the scissor box
+// glClear semantics ([GL 2.1, §4.2.3]): clear values clamped to the buffer's range, the scissor box
 // limits the clear, colour mask / depth mask / stencil write mask apply.
 #include <functional>
 #include <vector>

@@ -1,6 +1,6 @@
-// Homogeneous clipping (GL 2.1 §2.12): near plane, points at infinity under P_inf (000 §3.3),
-// triangles behind the eye, huge coordinates, depth clamp. Each expectation is derived by hand in
-// eye or window space and compared with the rasterized stencil and depth.
+// Homogeneous clipping ([GL 2.1, §2.12]): near plane, points at infinity under P_inf
+// ([Kuhn 2016, §3.3]), triangles behind the eye, huge coordinates, depth clamp. Each expectation is
+// derived by hand in eye or window space and compared with the rasterized stencil and depth.
 #include <algorithm>
 #include <string>
 #include <vector>

@@ -1,5 +1,6 @@
-// The shadow-map lookup (002 §3.1, §5.1.2): projective (s, t, r, q), nearest texel, clamp to edge,
-// r/q compared against the stored depth, 1 on pass and the compare-fail value (0.4) on failure.
+// The shadow-map lookup ([Hempe 2004, §3.1, §5.1.2]): projective (s, t, r, q), nearest texel, clamp
+// to edge, r/q compared against the stored depth, 1 on pass and the compare-fail value (0.4) on
+// failure.
 #include <cmath>
 #include <iterator>
 #include <vector>

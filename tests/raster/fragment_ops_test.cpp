@@ -1,4 +1,4 @@
-// The per-fragment operations of GL 2.1 §4.1, each checked through a real draw: a rectangle over
+// The per-fragment operations of [GL 2.1, §4.1], each checked through a real draw: a rectangle over
 // a row of pixels whose stored stencil / depth / colour values differ, so one draw shows the
 // operation on every interesting input at once. Expected rows are written out by hand.
 #include <array>
@@ -79,7 +79,7 @@ std::string depthFuncPattern(CompareFunc func, DepthFormat format, double z, con
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-// Stencil test: (ref & mask) FUNC (stored & mask), GL 2.1 §4.1.5.
+// Stencil test: (ref & mask) FUNC (stored & mask), [GL 2.1, §4.1.5].
 
 TEST_CASE("stencil func compares ref against the stored value, full mask", "[raster][stencil]") {
   // stored 0x20 0x35 0x3A 0x40, ref 0x35, mask 0xFF
@@ -273,7 +273,7 @@ TEST_CASE("stencilFaceMayWrite asks all three ops through the face's write mask"
 }
 
 // ---------------------------------------------------------------------------------------------
-// Depth test (GL 2.1 §4.1.6): the fragment's code FUNC the stored code.
+// Depth test ([GL 2.1, §4.1.6]): the fragment's code FUNC the stored code.
 
 TEST_CASE("every depth func compares the fragment depth against the stored depth", "[raster][depth]") {
   const std::vector<double> stored{0.25, 0.5, 0.75, 1.0};
@@ -314,7 +314,7 @@ TEST_CASE("depth is compared in the buffer's format: one float ulp is below unor
 }
 
 // ---------------------------------------------------------------------------------------------
-// Blending (GL 2.1 §4.1.8), equation FUNC_ADD, result clamped to [0, 1] by the colour buffer.
+// Blending ([GL 2.1, §4.1.8]), equation FUNC_ADD, result clamped to [0, 1] by the colour buffer.
 
 namespace {
 

@@ -114,7 +114,7 @@ TEST_CASE("a stencil-failed fragment is not depth tested and does not write dept
 }
 
 // ---------------------------------------------------------------------------------------------
-// Perspective-correct varyings (GL 2.1 §3.5.1, eq. 3.6).
+// Perspective-correct varyings ([GL 2.1, §3.5.1, eq. 3.6]).
 
 namespace {
 

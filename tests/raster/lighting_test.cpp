@@ -1,6 +1,6 @@
-// The Phong illumination model (000 §2.3) with hand-computed values. The scene: surface point
-// p = (0, 0, 0) with normal n = (0, 0, 1), light at (0, 3, 4) -> L = (0, 0.6, 0.8), N.L = 0.8;
-// eye at (0, 0, 5) -> V = (0, 0, 1). Phong: R = 2 (N.L) N - L = (0, -0.6, 0.8), R.V = 0.8.
+// The Phong illumination model ([Kuhn 2016, §2.3]) with hand-computed values. The scene: surface
+// point p = (0, 0, 0) with normal n = (0, 0, 1), light at (0, 3, 4) -> L = (0, 0.6, 0.8), N.L =
+// 0.8; eye at (0, 0, 5) -> V = (0, 0, 1). Phong: R = 2 (N.L) N - L = (0, -0.6, 0.8), R.V = 0.8.
 // Blinn: H = (L + V) / |L + V| = (0, 0.6, 1.8) / sqrt(3.6), N.H = 1.8 / sqrt(3.6), (N.H)^8 = 0.9^4.
 #include <bit>
 #include <vector>

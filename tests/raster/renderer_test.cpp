@@ -1,5 +1,5 @@
 // The draw call as a whole: scissor, the canonical vertex rotation that makes equal triangles give
-// bit-equal depths (the shadow-volume front cap, SPEC.md §3 step 2), determinism, pixel history.
+// bit-equal depths (the shadow-volume front cap), determinism, pixel history.
 #include <cstring>
 #include <functional>
 #include <optional>

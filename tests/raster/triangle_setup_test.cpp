@@ -94,7 +94,7 @@ TEST_CASE("facing follows the signed window area with row 0 at the bottom", "[ra
 }
 
 // ---------------------------------------------------------------------------------------------
-// Polygon offset, GL 1.1 §3.5.5: o = factor * m + units * r, m = max(|dz/dx|, |dz/dy|).
+// Polygon offset, [GL 2.1, §3.5.5]: o = factor * m + units * r, m = max(|dz/dx|, |dz/dy|).
 
 namespace {
 

@@ -141,7 +141,8 @@ TEST_CASE("pumpkins: seven pumpkins, the light inside the lantern, the camera in
     if (i.mesh->name == "lantern") lantern = &i;
   REQUIRE(lantern != nullptr);
   CHECK(inside(lantern->worldBounds, light));
-  // 000 Abb. 5.8: the eye lies in a shadow volume — the lantern's shell is between it and the light.
+  // [Kuhn 2016, Fig. 5.8]: the eye lies in a shadow volume — the lantern's shell is between it and
+  // the light.
   CHECK(occludersBetween(scene, light, scene.camera.eye) > 0);
   // The light escapes: straight up through the lid and out through the face.
   CHECK(occludersBetween(scene, light, light + glm::dvec3(0.0, 2.5, 0.0)) == 0);

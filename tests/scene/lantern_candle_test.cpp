@@ -1,7 +1,8 @@
 // Where the pumpkin scene's candle may stand. The lantern's inner skin is its outer skin scaled
 // about the centre, so every rim quad lies in a plane through the centre; a candle there was in
-// the plane of all 204 rim triangles, N · (L − V) = 0 (000 §4.3.4), and the z-fail shadow mask and
-// the oracle's shadow rays disagreed on every visible rim pixel (83 of 26515 at 200 x 160).
+// the plane of all 204 rim triangles, N · (L − V) = 0 ([Kuhn 2016, §4.3.4]), and the z-fail shadow
+// mask and the oracle's shadow rays disagreed on every visible rim pixel (83 of 26515 at 200
+// x 160).
 #include <catch2/catch.hpp>
 
 #include <algorithm>

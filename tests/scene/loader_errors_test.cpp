@@ -1,5 +1,5 @@
 // Every malformed scene is rejected with "file:line:column: message" (1-based), pointing at the
-// key or value that is wrong — one test per kind of error (issue 3, "Errors").
+// key or value that is wrong — one test per kind of error.
 #include <catch2/catch.hpp>
 
 #include "scene/scene_loader.h"

@@ -1,4 +1,4 @@
-// Determinism (SPEC.md §1): the same scene gives the same bytes in every buffer, on every run and
+// Determinism: the same scene gives the same bytes in every buffer, on every run and
 // for any thread count.
 #include <catch2/catch.hpp>
 

@@ -8,7 +8,7 @@
 
 using namespace shadowref;
 
-TEST_CASE("extrusion: V∞ = (V·L_w − L.xyz, 0) for point and directional lights (000 §3.4)", "[volumes][extrusion]") {
+TEST_CASE("extrusion: V∞ = (V·L_w − L.xyz, 0) for point and directional lights ([Kuhn 2016, §3.4])", "[volumes][extrusion]") {
   CHECK(extrudeToInfinity({1, 2, 3}, {0, 5, 0, 1}) == glm::dvec4(1, -3, 3, 0));
   CHECK(extrudeToInfinity({-4, 0.5, 2}, {1, 1, 1, 1}) == glm::dvec4(-5, -0.5, 1, 0));
   // Directional: every vertex goes to the same point, the direction the light travels.

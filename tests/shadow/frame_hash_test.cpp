@@ -1,4 +1,4 @@
-// Determinism across builds (SPEC.md §1: the same bytes on every machine): a hash of every buffer
+// Determinism across builds (the same bytes on every machine): a hash of every buffer
 // of a set of small frames, pinned in golden/frame-hashes.txt. CI checks it in the Release build
 // (AVX2 where the machine has it) and in the sanitizer build (built for any x86-64, SSE2), so
 // both vector widths of the span and lighting loops must give the same bytes — and the same as

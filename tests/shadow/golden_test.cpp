@@ -1,4 +1,4 @@
-// Golden images of the stencil shadow volumes (issue 4 "Golden images"; golden/README.md).
+// Golden images of the stencil shadow volumes (golden/README.md).
 //
 // Each case renders a document scene at 200 x 160 with one method and compares with
 // golden/<case>.exr what writeExr would write: colour (R, G, B, A) within 1/255, depth (Z) and
@@ -36,7 +36,8 @@ std::vector<GoldenCase> goldenCases() {
       {"zpass", ShadowMethod::ZPass}, {"zfail", ShadowMethod::ZFail}, {"auto", ShadowMethod::Auto}};
   for (const char* scene : {"room", "pumpkins", "city16", "minimal"})
     for (const auto& [suffix, method] : methods) cases.push_back({std::string(scene) + "-" + suffix, scene, method, {}});
-  // Soft shadows (000 §3.6): the ceiling light plus 8 on a square in the Y plane, 9 stencils.
+  // Soft shadows ([Kuhn 2016, §3.6]): the ceiling light plus 8 on a square in the Y plane, 9
+  // stencils.
   cases.push_back({"room-soft-square_y", "room", ShadowMethod::ZFail,
                    {"lights.0.soft.shape=square_y", "lights.0.soft.spacing=0.3"}});
   return cases;
@@ -94,7 +95,7 @@ TEST_CASE("golden: every shadow-volume method on room, pumpkins, city16, minimal
 TEST_CASE("golden: the soft-light golden holds one stencil channel per light, and the lights' shadows differ",
           "[golden]") {
   const FrameResult frame = renderCase(goldenCases().back());
-  REQUIRE(frame.stencilPerLight.size() == 9);  // the light plus 8 on a square (000 §3.6)
+  REQUIRE(frame.stencilPerLight.size() == 9);  // the light plus 8 on a square ([Kuhn 2016, §3.6])
   const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
   REQUIRE(extras.channels.size() == 9);
   CHECK(extras.channels[0].name == "stencil.L0");

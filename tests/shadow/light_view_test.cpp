@@ -130,7 +130,7 @@ TEST_CASE("cubeFaceFor picks the major axis and its sign, ties to x then y", "[s
 }
 
 TEST_CASE("cube face views reproduce GL's major-axis table (s_c, t_c, m_a)", "[shadowmap]") {
-  // GL 2.1 §3.8.6: s = (s_c/|m_a| + 1)/2, t = (t_c/|m_a| + 1)/2 with, per face,
+  // [GL 2.1, §3.8.6]: s = (s_c/|m_a| + 1)/2, t = (t_c/|m_a| + 1)/2 with, per face,
   //   +x: (-rz, -ry)  -x: (rz, -ry)  +y: (rx, rz)  -y: (rx, -rz)  +z: (rx, -ry)  -z: (-rx, -ry).
   Light light;
   light.position = {1.0, 2.0, 3.0};

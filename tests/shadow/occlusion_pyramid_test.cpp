@@ -77,7 +77,7 @@ TEST_CASE("occlusion pyramid: boxes clearly inside need z-fail, boxes clearly ou
   CHECK_FALSE(needsZFail(Aabb{}, c, 1.0, light));                       // nothing
 }
 
-TEST_CASE("occlusion pyramid: the camera inside a shadow volume needs z-fail (000 Abb. 3.3)", "[volumes][occlusion_pyramid]") {
+TEST_CASE("occlusion pyramid: the camera inside a shadow volume needs z-fail ([Kuhn 2016, Fig. 3.3])", "[volumes][occlusion_pyramid]") {
   const Camera c = forwardCamera(60.0);
   // An occluder between the light and the whole near rectangle: the camera is in its shadow.
   CHECK(needsZFail(boxBetween({-3, -3, -6}, {3, 3, -5}), c, 1.5, {0, 0, -11, 1}));
@@ -86,12 +86,13 @@ TEST_CASE("occlusion pyramid: the camera inside a shadow volume needs z-fail (00
   CHECK_FALSE(needsZFail(boxAround({0, 0, -6}, 0.2), c, 1.5, {0, 0, 10, 1}));
 }
 
-TEST_CASE("occlusion pyramid: 000 §4.2.1's fovX formula would miss a box the correct width catches (erratum)",
+TEST_CASE("occlusion pyramid: the fovX formula of [Kuhn 2016, §4.2.1] would miss a box the correct width catches (erratum)",
           "[volumes][occlusion_pyramid]") {
   const Camera c = forwardCamera(60.0);
   const double aspect = 1.0;
   const double correct = std::tan(std::numbers::pi / 6.0);  // 0.577: tan(fovY/2)·aspect·near
-  // 000: fovX = 2·atan(fovY·0.5)·aspect (fovY in radians), halfWidth = tan(fovX/2)·near = 0.5236.
+  // [Kuhn 2016, §4.2.1]: fovX = 2·atan(fovY·0.5)·aspect (fovY in radians), halfWidth =
+  // tan(fovX/2)·near = 0.5236.
   const double fovY = std::numbers::pi / 3.0;
   const double wrong = std::tan(2.0 * std::atan(fovY * 0.5) * aspect / 2.0);
   REQUIRE(wrong < 0.53);

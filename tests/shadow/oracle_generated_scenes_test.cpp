@@ -1,6 +1,6 @@
 // The oracle on the documents' scenes at golden size (200 x 160): its two independent answers —
 // volume crossing counts and shadow rays — must agree, and z-pass must agree with z-fail exactly
-// where the camera is outside every volume (000 §3.4; issue 4).
+// where the camera is outside every volume ([Kuhn 2016, §3.4]).
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -56,7 +56,7 @@ TEST_CASE("oracle: in the room, counts and shadow rays agree and z-pass equals z
   INFO("compared " << a.compared << " shadowed " << a.shadowed << " seconds " << seconds);
   CHECK(a.compared > 20000);
   CHECK(a.shadowed > 300);
-  CHECK(a.countVsShadowRay <= a.compared / 1000);  // the 99.9 % of issue 4
+  CHECK(a.countVsShadowRay <= a.compared / 1000);  // agree on 99.9 % of the compared pixels
   CHECK(a.zpassVsZfail == 0);
 }
 
@@ -73,7 +73,7 @@ TEST_CASE("oracle: at the pumpkins, counts and shadow rays agree, and z-pass is 
                    << seconds);
   CHECK(a.compared > 5000);
   CHECK(a.countVsShadowRay <= a.compared / 1000);
-  CHECK(a.zpassVsZfail > 100);  // 000 Abb. 5.8: the camera inside the shell's volume
+  CHECK(a.zpassVsZfail > 100);  // [Kuhn 2016, Fig. 5.8]: the camera inside the shell's volume
 }
 
 TEST_CASE("oracle: in city-16, counts and shadow rays agree and z-pass equals z-fail", "[oracle]") {

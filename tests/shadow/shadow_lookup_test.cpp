@@ -34,7 +34,7 @@ TEST_CASE("shadow lookup: R <= D is lit, R > D gets the compare-fail value 0.4",
   ShadowLookup lookup;
   lookup.textureMatrix = biasMatrix();
   lookup.sampler.texture = &map;
-  CHECK(lookup.sampler.failValue == 0.4);  // 002 §5.1.2 default
+  CHECK(lookup.sampler.failValue == 0.4);  // [Hempe 2004, §5.1.2] default
   // (-0.5, -0.5, z): texel (0, 0); r = 0.5 z + 0.5.
   CHECK(lookup.factor({-0.5, -0.5, 0.0}) == 1.0);   // R = 0.5 = D: lit (LEQUAL)
   CHECK(lookup.factor({-0.5, -0.5, -0.2}) == 1.0);  // R = 0.4 < D

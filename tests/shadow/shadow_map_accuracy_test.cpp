@@ -1,8 +1,8 @@
-// Shadow-map accuracy against the ray-traced oracle (issue 5 "Accuracy, measured";
-// docs/shadow-maps.md has the full table from bench/shadow_map_accuracy.cpp). The bounds here are
-// the measured values at this test's image size plus a margin, so a change that makes the maps
-// markedly worse fails, and 002 §6.1's claim (TSM at 256² looks like standard at 1024²) is held
-// to on the scene it was made for.
+// Shadow-map accuracy against the ray-traced oracle (docs/shadow-maps.md has the full table from
+// bench/shadow_map_accuracy.cpp). The bounds here are the measured values at this test's image size
+// plus a margin, so a change that makes the maps markedly worse fails, and the claim of
+// [Hempe 2004, §6.1] (TSM at 256² looks like standard at 1024²) is held to on the scene it was made
+// for.
 //
 // Wrong pixel: the map shadows it and the light sees it, or the map lights it and the light does
 // not (countShadowErrors), over every pixel whose primary ray hits the scene.
@@ -57,7 +57,7 @@ struct Measurement {
 }  // namespace
 
 TEST_CASE("shadow map accuracy: on the outdoor scene TSM at 256² is at least as right as standard mapping at 1024² "
-          "(002 §6.1), and TSM is never markedly worse than standard at the same size", "[shadowmap-accuracy]") {
+          "([Hempe 2004, §6.1]), and TSM is never markedly worse than standard at the same size", "[shadowmap-accuracy]") {
   const Scene base = loadWith("outdoor", {});
   const oracle::OracleImage o = oracle::castOracle(base, base.lights.at(0));
   const Measurement m{&o, "outdoor", {}};
@@ -70,7 +70,7 @@ TEST_CASE("shadow map accuracy: on the outdoor scene TSM at 256² is at least as
   // Measured (400 x 320 / 200 x 160): standard 256: 4.84 / 4.70, 1024: 3.77 / 3.64; TSM 256:
   // 3.30 / 3.07, 1024: 1.54 / 1.30. docs/shadow-maps.md has 800 x 640.
   CHECK(standard1024 < 4.5);
-  CHECK(tsm256 <= standard1024 + 0.25);  // 002 §6.1, with a quarter point of slack
+  CHECK(tsm256 <= standard1024 + 0.25);  // [Hempe 2004, §6.1], with a quarter point of slack
   CHECK(tsm256 < standard256);
   CHECK(tsm1024 < standard1024);
   CHECK(tsm1024 < 2.0);

@@ -1,4 +1,4 @@
-// Shadow-mapped frames (issue 5; 002 §3.1, §4.1, §4.2, §5): the whole frame glue of
+// Shadow-mapped frames ([Hempe 2004, §3.1, §4.1, §4.2, §5]): the whole frame glue of
 // shadow_map_renderer.cpp and light_shadow.cpp against hand-computed shadows.
 //
 // The scene: an 8 × 8 ground slab (top at y = 0) and a 2 × 1 × 2 box hovering at y = 1 … 2. Under
@@ -21,7 +21,7 @@ using namespace shadowref;
 
 namespace {
 
-constexpr double kFail = 0.4;  // 002 §5.1.2: GL_TEXTURE_COMPARE_FAIL_VALUE
+constexpr double kFail = 0.4;  // [Hempe 2004, §5.1.2]: GL_TEXTURE_COMPARE_FAIL_VALUE
 
 std::string sceneYaml(const std::string& light, const std::string& camera, const std::string& shadow) {
   return "image: {width: 200, height: 160}\n"
@@ -249,7 +249,8 @@ TEST_CASE("shadow map frame: a point light's cube maps shadow the ground as the 
 TEST_CASE("shadow map frame: TSM equals standard mapping when the trapezoid is the whole light view (fallback, N_T = I)",
           "[shadowmap-frame]") {
   // The camera looks straight down along the light from high above and sees the whole scene:
-  // the degenerate case of 002 Listing 10e, whose bounding rectangle is the light's whole view.
+  // the degenerate case of [Hempe 2004, Listing 10e], whose bounding rectangle is the light's whole
+  // view.
   const std::string camera = "{eye: [0, 30, 0], target: [0, 0, 0], up: [0, 0, -1], fov: 40, near: 1, far: 60}";
   const Scene standard = makeScene(kSun, "{method: shadowmap, map_size: 256}", camera);
   const Scene trapezoidal = makeScene(kSun, "{method: tsm, map_size: 256}", camera);
@@ -315,7 +316,7 @@ TEST_CASE("shadow map frame: 3x3 PCF blends the compare results at the shadow's 
   CHECK(pcf->factor({1.0 - 0.5 * texel, 0.0, 1.0 - 0.5 * texel}) == Approx((4 * kFail + 5 * 1.0) / 9).epsilon(1e-12));
 }
 
-TEST_CASE("shadow map frame: the 16-light accumulation (002 §4.2) equals the average of 16 separately rendered frames",
+TEST_CASE("shadow map frame: the 16-light accumulation ([Hempe 2004, §4.2]) equals the average of 16 separately rendered frames",
           "[shadowmap-frame]") {
   const std::string area = "{name: spot, type: spot, position: [0, 6, 0], direction: [0, -1, 0], spot_cutoff: 45, "
                            "soft: {shape: area16, spacing: 1}}";

@@ -1,4 +1,4 @@
-// Golden images of the shadow maps (issue 5 "Golden images"; golden/README.md): per case the
+// Golden images of the shadow maps (golden/README.md): per case the
 // frame at 200 x 160 (R, G, B, A within 1/255, Z exact) in golden/sm-<case>.exr and the light's
 // depth map(s) in golden/sm-<case>-map.exr (exact): channel Z is the first map, every further one
 // is Z.<name> as --dump shadowmap names them (cube faces L0.face1 … L0.face5, TSM's unwarped view
@@ -31,10 +31,11 @@ struct MapGolden {
 
 std::vector<MapGolden> mapGoldens() {
   return {
-      {"standard", "directional", ShadowMethod::ShadowMap, {}, 1},  // orthographic (002 §5.1.2)
-      {"tsm", "outdoor", ShadowMethod::Trapezoidal, {}, 2},         // 002 §4.1; + L0.plain
+      {"standard", "directional", ShadowMethod::ShadowMap, {}, 1},  // orthographic ([Hempe 2004, §5.1.2])
+      {"tsm", "outdoor", ShadowMethod::Trapezoidal, {}, 2},         // [Hempe 2004, §4.1]; + L0.plain
       {"pcf", "spot", ShadowMethod::ShadowMap, {"shadow.pcf=3"}, 1},  // perspective, 3 x 3 PCF
-      // 002 §4.2: 16 positions on the edge of a square area light, accumulated; map of the first.
+      // [Hempe 2004, §4.2]: 16 positions on the edge of a square area light, accumulated; map of
+      // the first.
       {"soft", "spot", ShadowMethod::ShadowMap, {"lights.0.soft.shape=area16", "lights.0.soft.spacing=0.6"}, 1},
       {"cube", "room", ShadowMethod::ShadowMap, {}, 6},  // point light: six cube faces
   };

@@ -162,7 +162,7 @@ Mesh openTopBox() {
 
 }  // namespace
 
-TEST_CASE("silhouette: an open edge counts when its one triangle faces the light, not otherwise (003, 004)",
+TEST_CASE("silhouette: an open edge counts when its one triangle faces the light, not otherwise ([SV slides], [DSS article])",
           "[volumes][silhouette]") {
   const Mesh mesh = openTopBox();
   REQUIRE(mesh.topology == Topology::Open);

@@ -50,7 +50,7 @@ constexpr auto K = StencilOp::Keep;
 
 }  // namespace
 
-TEST_CASE("stencil counting: z-pass two-sided — front INCR_WRAP on depth pass, back DECR_WRAP (000 §3.2)",
+TEST_CASE("stencil counting: z-pass two-sided — front INCR_WRAP on depth pass, back DECR_WRAP ([Kuhn 2016, §3.2])",
           "[volumes][stencil_counting]") {
   const auto states = volumePassStates(baseState(), StencilCounting::ZPass, {true, true});
   REQUIRE(states.size() == 1);
@@ -70,7 +70,7 @@ TEST_CASE("stencil counting: z-fail two-sided — back INCR_WRAP on depth fail, 
   CHECK(sameFace(states[0].stencil[FrontFacing], face(StencilOp::DecrWrap, K)));
 }
 
-TEST_CASE("stencil counting: z-pass in two culled passes, saturating — front faces INCR first, then back DECR (003)",
+TEST_CASE("stencil counting: z-pass in two culled passes, saturating — front faces INCR first, then back DECR ([SV slides])",
           "[volumes][stencil_counting]") {
   const auto states = volumePassStates(baseState(), StencilCounting::ZPass, {false, false});
   REQUIRE(states.size() == 2);
@@ -83,7 +83,7 @@ TEST_CASE("stencil counting: z-pass in two culled passes, saturating — front f
   CHECK(sameFace(states[1].stencil[BackFacing], face(K, StencilOp::Decr)));
 }
 
-TEST_CASE("stencil counting: z-fail in two culled passes — back faces INCR_WRAP on fail first, then front DECR_WRAP (003)",
+TEST_CASE("stencil counting: z-fail in two culled passes — back faces INCR_WRAP on fail first, then front DECR_WRAP ([SV slides])",
           "[volumes][stencil_counting]") {
   const auto states = volumePassStates(baseState(), StencilCounting::ZFail, {false, true});
   REQUIRE(states.size() == 2);

@@ -89,12 +89,13 @@ double signedArea(const Trapezoid& tz) {
 }  // namespace
 
 TEST_CASE("eta formula of the 80% rule against hand calculations", "[shadowmap]") {
-  // 002 Listing 10c: lambda = 1, delta' = 0.4, xi = -0.6: (0.4 - 0.24) / (1 - 0.8 + 0.6) = 0.2.
+  // [Hempe 2004, Listing 10c]: lambda = 1, delta' = 0.4, xi = -0.6: (0.4 - 0.24) / (1 - 0.8 + 0.6)
+  // = 0.2.
   CHECK_THAT(trapezoidEta(1.0, 0.4), WithinAbs(0.2, 1e-15));
   // lambda = 10, delta' = 2: (20 - 12) / (10 - 4 + 6) = 2/3.
   CHECK_THAT(trapezoidEta(10.0, 2.0), WithinAbs(2.0 / 3.0, 1e-15));
-  // The 1D projection of 002 §4.1.2 with that eta sends the top line (y = eta from q) to +1, the
-  // base line (eta + lambda) to -1 and the focus point (eta + delta') to xi.
+  // The 1D projection of [Hempe 2004, §4.1.2] with that eta sends the top line (y = eta from q) to
+  // +1, the base line (eta + lambda) to -1 and the focus point (eta + delta') to xi.
   const double lambda = 10.0, deltaPrime = 2.0, eta = trapezoidEta(lambda, deltaPrime);
   auto project = [&](double y) {
     const double xi = -(lambda + 2.0 * eta) / lambda * y + 2.0 * (lambda + eta) * eta / lambda;
@@ -125,7 +126,7 @@ TEST_CASE("N_T of a hand-made trapezoid is (x, y) -> (-x/y, 3/y - 2)", "[shadowm
   CHECK(glm::determinant(xyw) > 0.0);
 }
 
-TEST_CASE("each of the 8 N_T steps does what 002 §4.1.2 says it does", "[shadowmap]") {
+TEST_CASE("each of the 8 N_T steps does what [Hempe 2004, §4.1.2] says it does", "[shadowmap]") {
   // An asymmetric, rotated trapezoid.
   const double a = 0.7;
   const glm::dmat2 rot{std::cos(a), std::sin(a), -std::sin(a), std::cos(a)};
@@ -174,7 +175,7 @@ TEST_CASE("each of the 8 N_T steps does what 002 §4.1.2 says it does", "[shadow
     for (int r = 0; r < 4; ++r) CHECK_THAT(composed[c][r], WithinAbs(NT[c][r], 1e-12));
 }
 
-TEST_CASE("the seed's H with 1/y_u (002 §4.1.2 step 4) gives the same N_T as Martin & Tan's", "[shadowmap]") {
+TEST_CASE("Hempe's H with 1/y_u ([Hempe 2004, §4.1.2] step 4) gives the same N_T as Martin & Tan's", "[shadowmap]") {
   const TrapezoidCorners t{{{2.0, 5.0}, {-3.0, 4.0}, {-1.0, 1.0}, {0.5, 1.5}}};
   const glm::dmat4 T1 = trapezoidStepT1(t), R = trapezoidStepR(t), T2 = trapezoidStepT2(t, R * T1);
   const glm::dmat4 H = trapezoidStepH(t, T2 * R * T1);
@@ -182,7 +183,7 @@ TEST_CASE("the seed's H with 1/y_u (002 §4.1.2 step 4) gives the same N_T as Ma
   const glm::dvec4 u = T2 * R * T1 * (glm::dvec4(t[2], 0.0, 1.0) + glm::dvec4(t[3], 0.0, 1.0)) / 2.0;
   seedH[1][1] = 1.0 / u.y;
   const glm::dmat4 seedS1 = trapezoidStepS1(t, seedH * T2 * R * T1);
-  CHECK(seedS1[1][1] == Approx(1.0).epsilon(1e-14));  // y already scaled by the seed's H
+  CHECK(seedS1[1][1] == Approx(1.0).epsilon(1e-14));  // y already scaled by Hempe's H
   const glm::dmat4 a = trapezoidStepS1(t, H * T2 * R * T1) * H, b = seedS1 * seedH;
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) CHECK_THAT(a[c][r], WithinAbs(b[c][r], 1e-12));
@@ -315,7 +316,7 @@ TEST_CASE("TSM fallback boundary: light inside the field of view falls back, jus
   CHECK_FALSE(tilted(60.0).fallback);
 }
 
-TEST_CASE("near-inside-far test needs all four near corners inside, not just one (002 Listing 10e text)",
+TEST_CASE("near-inside-far test needs all four near corners inside, not just one ([Hempe 2004, Listing 10e] text)",
           "[shadowmap]") {
   // Far polygon: the square [-2,2]^2 (clockwise, to check orientation independence).
   std::array<glm::dvec2, 8> p{};

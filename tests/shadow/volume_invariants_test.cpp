@@ -1,13 +1,13 @@
-// Two exact invariants of stencil counting, on every scene in scenes/ (issue 4):
+// Two exact invariants of stencil counting, on every scene in scenes/:
 //
 //  1. For the same capped volumes, z-fail = z-pass + (back − front fragments at the pixel, depth
 //     ignored). Every volume fragment either passes or fails the depth test: z-pass counts
 //     F_pass − B_pass, z-fail counts B_fail − F_fail, so their difference is B − F over all
-//     fragments (000 §3.2 vs §3.4). It holds only if the depth test, the facing and the two-sided
-//     stencil treat every fragment consistently.
+//     fragments ([Kuhn 2016, §3.2 vs §3.4]). It holds only if the depth test, the facing and the
+//     two-sided stencil treat every fragment consistently.
 //  2. The silhouette volume counts the same as the union of one small volume per light-facing
 //     triangle (buildTriangleVolumes): the interior quads come in pairs of opposite orientation
-//     and cancel — exactly, if the rasterization is watertight (000 §3.5, SPEC.md §1).
+//     and cancel — exactly, if the rasterization is watertight ([Kuhn 2016, §3.5]).
 //
 // The volumes are drawn here through the raster pipeline directly, with the clip vertices made
 // exactly as volume_renderer.cpp makes them (PreparedInstance::transform.toClip of the volume's
@@ -56,7 +56,7 @@ Scene sceneForInvariants(const std::string& path) {
   LoadOptions options;
   options.overrides = {"image.width=" + std::to_string(kWidth), "image.height=" + std::to_string(kHeight)};
   Scene scene = loadScene(path, options);
-  // The invariants are statements about counts modulo 256: wrapping ops (003).
+  // The invariants are statements about counts modulo 256: wrapping ops ([SV slides]).
   scene.shadow.wrapOps = true;
   return scene;
 }

@@ -1,5 +1,5 @@
 // The rasterized stencil shadow volumes checked against the independent ray-cast oracle
-// (tests/support/oracle/oracle.h; issue 4 "Checked against an independent oracle").
+// (tests/support/oracle/oracle.h).
 //
 // The oracle never touches the rasterizer: it counts the signed crossings of the volume polygons
 // along each pixel's ray in double precision. The stencil after a light's volume pass must hold
@@ -59,11 +59,11 @@ FrameResult renderWithStencil(const Scene& scene, ShadowMethod method) {
 
 OracleImage castFor(const Scene& scene, const Light& light) {
   oracle::OracleOptions options;
-  options.forceInfiniteProjection = true;  // the volume renderer draws with P_inf (000 §3.3)
+  options.forceInfiniteProjection = true;  // the volume renderer draws with P_inf ([Kuhn 2016, §3.3])
   return castOracle(scene, light, options);
 }
 
-// An 8-bit wrapping stencil holds a count modulo 256 (INCR_WRAP / DECR_WRAP, 003).
+// An 8-bit wrapping stencil holds a count modulo 256 (INCR_WRAP / DECR_WRAP, [SV slides]).
 uint8_t wrapped(int count) { return static_cast<uint8_t>(count & 0xFF); }
 int asSigned(uint8_t value) { return static_cast<int8_t>(value); }
 
@@ -92,7 +92,7 @@ CountCheck compareCounts(std::span<const uint8_t> stencil, const OracleImage& im
 }
 
 // Every shadow-casting mesh closed (each edge has exactly two triangles, mesh.h): the shadow mask claim
-// of issue 4 is made for closed-mesh scenes only.
+// is made for closed-mesh scenes only: an open mesh's volume is not closed, so counts leak.
 bool everyCasterClosed(const Scene& scene) {
   for (const Instance& inst : scene.instances())
     if (inst.shadowMesh && inst.shadowMesh->topology != Topology::Closed) return false;
@@ -136,7 +136,8 @@ TEST_CASE("z-pass: the stencil equals the oracle's z-pass count (near plane to h
       CHECK(c.compared > size_t(kWidth * kHeight) / 2);
       CHECK(c.mismatched == 0);
       if (name != "pumpkins") {
-        // The camera is in no volume here, so z-pass is right: its count is z-fail's (000 §3.4).
+        // The camera is in no volume here, so z-pass is right: its count is z-fail's
+        // ([Kuhn 2016, §3.4]).
         const CountCheck truth = compareCounts(frame.stencilPerLight[l], img, img.zfail);
         CHECK(truth.mismatched == 0);
       }
@@ -194,7 +195,7 @@ struct MethodSplit {
   size_t zpass = 0, zfail = 0;
 };
 
-// McGuire's choice per caster (000 §4.3.2), computed here from the occlusion pyramid.
+// McGuire's choice per caster ([Kuhn 2016, §4.3.2]), computed here from the occlusion pyramid.
 MethodSplit expectedSplit(const Scene& scene, const Light& light) {
   const double aspect = makeCameraView(scene, true).aspect;
   MethodSplit split;
@@ -232,7 +233,7 @@ TEST_CASE("auto uses z-pass for most objects of the city and z-fail for the pump
   const FrameResult frame = renderWithStencil(porch, ShadowMethod::Auto);
   const MethodSplit reported = reportedSplit(frame.notes.at(0));
   INFO(frame.notes[0]);
-  CHECK(reported.zfail >= 1);  // the hollow pumpkin holding the light (000 Abb. 5.8)
+  CHECK(reported.zfail >= 1);  // the hollow pumpkin holding the light ([Kuhn 2016, Fig. 5.8])
   CHECK(reported.zfail == expectedSplit(porch, porch.lights[0]).zfail);
 }
 
@@ -256,7 +257,7 @@ TEST_CASE("pumpkins with z-pass: the camera inside the hollow pumpkin's volume m
     wrongDifference += wrapped(p[i] - f[i]) != wrapped(oracleDifference);
   }
   INFO("pixels differing " << differ << " of " << p.size() << ", oracle predicts " << predicted << " of " << compared);
-  // 000 Abb. 5.8: a large part of the picture is counted wrongly, not a few edge pixels.
+  // [Kuhn 2016, Fig. 5.8]: a large part of the picture is counted wrongly, not a few edge pixels.
   CHECK(differ * 10 > p.size());
   CHECK(predicted * 10 > compared);
   CHECK(wrongDifference == 0);

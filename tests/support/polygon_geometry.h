@@ -24,7 +24,7 @@ double distanceToOutline(const Polygon2& polygon, const glm::dvec2& p);
 int expectedCoverage(const Polygon2& polygon, const glm::dvec2& centre, double margin);
 
 // The tolerance the coverage tests leave around edges: 1e-3 px for the decision itself plus half a
-// sub-pixel step (2^-9 px), because the rasterizer snaps vertices to 1/256 pixel (SPEC.md §1).
+// sub-pixel step (2^-9 px), because the rasterizer snaps vertices to 1/256 pixel.
 inline constexpr double kEdgeMargin = 1e-3 + 1.0 / 512.0;
 
 }  // namespace shadowref::testing

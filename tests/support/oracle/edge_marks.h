@@ -1,7 +1,8 @@
-// Marking the pixels near projected edges (issue 4: comparisons may leave out pixels within one
-// pixel of a volume or geometry edge). Edges are homogeneous world segments (w = 0 ends allowed),
-// clipped in clip space to the near plane and the guard band (camera_model.h), then every pixel
-// whose centre lies within `radius` pixels of the projected segment is marked.
+// Marking the pixels near projected edges (comparisons leave out pixels within one pixel of
+// a volume or geometry edge, where the rasterizer's fill rule and the ray's exact answer may
+// differ). Edges are homogeneous world segments (w = 0 ends allowed), clipped in clip space to the
+// near plane and the guard band (camera_model.h), then every pixel whose centre lies within
+// `radius` pixels of the projected segment is marked.
 #pragma once
 
 #include <cstdint>

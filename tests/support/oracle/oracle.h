@@ -1,21 +1,23 @@
-// The independent oracle of issue 4: a ray caster that does not use the rasterizer. For every
-// pixel centre it finds the first hit of the primary ray (own BVH, double precision), counts the
-// signed crossings of the shadow-volume polygons along the ray in exact projective form, and casts
-// a shadow ray to the light.
+// An independent oracle for the stencil shadow volumes: a ray caster that does not use the
+// rasterizer. For every pixel centre it finds the first hit of the primary ray (own BVH, double
+// precision), counts the signed crossings of the shadow-volume polygons along the ray in exact
+// projective form, and casts a shadow ray to the light.
 //
 //   zpass: crossings of the volume SIDES (z-pass draws no caps) from the near plane to the hit,
 //          +1 entering through a front face, -1 leaving through a back face — what z-pass counts
-//          with INCR on front and DECR on back faces where the depth test passes (000 §3.1).
-//          The ray starts on the near plane because the rasterizer clips what lies before it.
+//          with INCR on front and DECR on back faces where the depth test passes
+//          ([Kuhn 2016, §3.1]). The ray starts on the near plane because the rasterizer clips what
+//          lies before it.
 //   zfail: crossings of sides and caps from the hit to infinity, +1 for back faces, -1 for front
-//          faces — what z-fail counts where the depth test fails (000 §3.4). A front cap lying in
-//          the hit surface counts here, as its fragments fail LESS against the equal scene depth;
-//          a back cap at infinity counts, as P_inf puts it at depth 1 (000 §3.3).
+//          faces — what z-fail counts where the depth test fails ([Kuhn 2016, §3.4]). A front cap
+//          lying in the hit surface counts here, as its fragments fail LESS against the equal scene
+//          depth; a back cap at infinity counts, as P_inf puts it at depth 1 ([Kuhn 2016, §3.3]).
 //   Without a hit (background) the hit is at infinity: zpass takes every finite crossing, zfail
 //   only those at infinity.
 // For closed volumes zfail is the number of volumes containing the hit point; zpass equals it when
 // the near-plane point of the pixel lies outside every volume, and otherwise falls short by the
-// number of volumes containing that point (the camera-in-shadow failure of z-pass, 000 §3.4).
+// number of volumes containing that point (the camera-in-shadow failure of z-pass,
+// [Kuhn 2016, §3.4]).
 //
 //   lit: 1 when a shadow ray from the hit to the light meets no shadow-casting geometry (the
 //        instances' shadowMesh, within range), 0 otherwise; 0 without a hit.
@@ -38,7 +40,7 @@ namespace shadowref::oracle {
 
 struct OracleOptions {
   bool forceInfiniteProjection = false;  // as makeCameraView's flag
-  bool respectRange = true;              // light range culling of casters (000 §4.3.1)
+  bool respectRange = true;              // light range culling of casters ([Kuhn 2016, §4.3.1])
   double edgeRadius = 1.0;               // pixels
   double depthAmbiguity = 1e-6;          // relative distance along the ray
   bool markNeighbourChanges = true;

@@ -1,9 +1,10 @@
 // Exact-in-form crossing of a segment with a triangle in oriented projective 3-space: the test
-// the oracle counts shadow-volume polygons with (issue 4), independent of the rasterizer.
+// the oracle counts shadow-volume polygons with, independent of the rasterizer.
 //
-// Shadow volumes have vertices at infinity (w = 0, 000 §3.4): a side quad (A, B, D∞, C∞) is the
-// part of the plane through A, B and the light between the rays from the light through A and B;
-// a back cap lies in the plane at infinity. Such a "triangle" is the set of positive combinations
+// Shadow volumes have vertices at infinity (w = 0, [Kuhn 2016, §3.4]): a side quad (A, B, D∞, C∞)
+// is the part of the plane through A, B and the light between the rays from the light through A and
+// B; a back cap lies in the plane at infinity. Such a "triangle" is the set of positive
+// combinations
 //   X = λ0 V0 + λ1 V1 + λ2 V2,  λi >= 0
 // of its homogeneous vertices (every vertex has w >= 0). A segment from P to Q (homogeneous, w >= 0;
 // Q = (d, 0) is the end at infinity of the ray o + t d) is the set μ P + ν Q, μ, ν >= 0. Oriented
@@ -19,7 +20,7 @@
 // tests — Plücker side products of the line PQ with each edge — agree. The meeting point is
 // |π(Q)| P + |π(P)| Q. π(Q) = 0 exactly (a back cap and the ray's end at infinity) is a crossing at
 // the very end, and counts: the segment is closed there, as the rasterizer keeps back caps at
-// depth 1 (P_inf, 000 §3.3).
+// depth 1 (P_inf, [Kuhn 2016, §3.3]).
 //
 // Orientation: for finite vertices π(X) = -n·(x - v0) with n = (v1 - v0) × (v2 - v0), so the side
 // a counter-clockwise-from-outside triangle faces (its outside) is π < 0. A ray ENTERS the volume

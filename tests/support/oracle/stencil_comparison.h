@@ -1,5 +1,5 @@
-// Comparing a rasterized stencil buffer with the oracle's counts (issue 4: "the rasterized stencil
-// must equal that count on every pixel that is not within one pixel of a volume or geometry edge").
+// Comparing a rasterized stencil buffer with the oracle's counts (the rasterized stencil
+// must equal that count on every pixel that is not within one pixel of a volume or geometry edge).
 // With wrapping ops (INCR_WRAP / DECR_WRAP) the 8-bit stencil holds the count modulo 256.
 #pragma once
 

@@ -1,11 +1,11 @@
 // The shadow volumes of a scene for one light, in world space, as the oracle counts them.
 //
 // Built with the project's buildShadowVolume (what is being checked is the RASTERIZED COUNT of
-// these polygons, issue 4), per instance that casts shadows (its shadowMesh: the mesh or its proxy)
-// and lies within the light's range (000 §4.3.1), with the light brought into object space and the
-// homogeneous vertices taken to world space by the instance's world matrix (w = 0 stays w = 0:
-// directions transform without translation). A mirroring world matrix (negative determinant) turns
-// the winding inside out; `orientation` undoes that, so "outside" is always the outside.
+// these polygons), per instance that casts shadows (its shadowMesh: the mesh or its proxy)
+// and lies within the light's range ([Kuhn 2016, §4.3.1]), with the light brought into object space
+// and the homogeneous vertices taken to world space by the instance's world matrix (w = 0 stays w =
+// 0: directions transform without translation). A mirroring world matrix (negative determinant)
+// turns the winding inside out; `orientation` undoes that, so "outside" is always the outside.
 #pragma once
 
 #include <array>
