@@ -1,11 +1,16 @@
 #include "image/channel_image.h"
 
+#include <sys/stat.h>
+
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 
 #include <OpenImageIO/imageio.h>
 
+#include "image/exr_header_check.h"
 #include "scene/checked_arithmetic.h"
 
 namespace shadowref {
@@ -83,9 +88,28 @@ void checkDeclaredSize(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, const 
            std::to_string(fileBytes) + "-byte file can hold");
 }
 
+// Before any image library sees the file: a regular file of bounded size (a FIFO would block,
+// /dev/zero never end), and for an OpenEXR file every header attribute within the file's bytes.
+void checkFile(const std::string& path, const ReadLimits& limits) {
+  auto refuse = [&](const std::string& why) { throw std::runtime_error("cannot read '" + path + "': " + why); };
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) refuse("no such file");
+  if (!S_ISREG(st.st_mode)) refuse("not a regular file");
+  if (std::uint64_t(st.st_size) > limits.maxFileBytes)
+    refuse("the file has " + std::to_string(st.st_size) + " bytes, more than the limit of " +
+           std::to_string(limits.maxFileBytes));
+  std::ifstream file(path, std::ios::binary);
+  char magic[4] = {};
+  if (!file.read(magic, 4) || !looksLikeExr(std::string_view(magic, 4))) return;
+  file.seekg(0);
+  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (const std::string problem = checkExrHeaders(bytes); !problem.empty()) refuse(problem);
+}
+
 }  // namespace
 
 ChannelImage readChannelImage(const std::string& path, const ReadLimits& limits) {
+  checkFile(path, limits);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error("cannot read '" + path + "': " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();

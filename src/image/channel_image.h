@@ -28,10 +28,14 @@ struct ReadLimits {
   // width x height x channels; each value is a double, so 2^29 values are 4 GiB (8192 x 8192 with
   // 8 channels).
   uint64_t maxValues = uint64_t(1) << 29;
+  // The file itself: a regular file of at most this many bytes (1 GiB holds an uncompressed
+  // 8192 x 8192 EXR with 4 float channels).
+  uint64_t maxFileBytes = uint64_t(1) << 30;
 };
 
 // Reads subimage 0 of any file OpenImageIO can read; throws std::runtime_error if it cannot.
-// Before reading pixels: width, height and channels must be positive, their product within
+// Before OpenImageIO opens it: a regular file of at most limits.maxFileBytes, and for OpenEXR every
+// header attribute within the file (checkExrHeaders). Before reading pixels: width, height and channels must be positive, their product within
 // limits.maxValues (overflow-safe), and where the compression bounds how much a byte can expand
 // to — PNG and EXR zip/zips (deflate, at most 1032:1), EXR pxr24 (1376:1), rle (128:1), none
 // (1:1) — the declared pixel bytes must fit in what the file's size can hold.
