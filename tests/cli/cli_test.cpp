@@ -334,7 +334,7 @@ TEST_CASE("SIGTERM or SIGINT while an output is written ends the CLI by that sig
   }
 }
 
-TEST_CASE("-o onto the scene file itself is refused with exit 2 and the scene kept", "[cli][hostile]") {
+TEST_CASE("render -o onto the scene file itself is refused with exit 2 and the scene kept", "[cli][hostile]") {
   const fs::path dir = freshDir("self");
   const fs::path scene = dir / "scene.png";  // a YAML scene under an image name: -o would overwrite it
   const std::string text = "image: {width: 16, height: 12}\n";
