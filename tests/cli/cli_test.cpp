@@ -370,7 +370,7 @@ TEST_CASE("compare refuses an image whose header declares more pixels than its f
   CHECK(small.err.find("file can hold") != std::string::npos);
 }
 
-TEST_CASE("--dump-region is checked before rendering: extreme or outside regions exit 2 with nothing written",
+TEST_CASE("render --dump-region is checked before rendering: extreme or outside regions exit 2 with nothing written",
           "[cli][hostile]") {
   const fs::path dir = freshDir("region");
   const std::string out = (dir / "r.png").string();
@@ -390,7 +390,7 @@ TEST_CASE("--dump-region is checked before rendering: extreme or outside regions
   CHECK(clipped.out.find("clipped") != std::string::npos);
 }
 
-TEST_CASE("--dump stencil writes each light's picture as its pass ends and bounds what an EXR keeps",
+TEST_CASE("render --dump stencil writes each light's picture as its pass ends and bounds what an EXR keeps",
           "[cli][hostile]") {
   const std::string scene = writeScene("three.yaml",
                                        "image: {width: 64, height: 48}\n"

@@ -103,7 +103,7 @@ std::map<std::string, std::string> shadowrefAttributes(const std::string& path) 
 
 }  // namespace
 
-TEST_CASE("--version prints the version, revision, vector level and compiler and exits 0", "[cli][provenance]") {
+TEST_CASE("shadowref --version prints the version, revision, vector level and compiler and exits 0", "[cli][provenance]") {
   const Run r = shadowref("--version");
   INFO(r.out << r.err);
   CHECK(r.status == 0);
