@@ -172,7 +172,7 @@ TEST_CASE("every image a render writes names the program, scene, hash, overrides
   CHECK(slurp(exr) == slurp(exr2));
 }
 
-TEST_CASE("the built-in scene is named as such and has no file hash; no -D, no overrides", "[cli][provenance]") {
+TEST_CASE("the built-in scene is named as such and has no file hash, and no -D gives no overrides", "[cli][provenance]") {
   const std::string png = (scratch() / "builtin.png").string();
   REQUIRE(shadowref("render -D image.width=32 -D image.height=24 --threads 1 --quiet -o '" + png + "'").status == 0);
   const auto attributes = shadowrefAttributes(png);
