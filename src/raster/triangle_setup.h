@@ -89,7 +89,9 @@ inline bool plainFloatDepths(const DepthCodec& codec, bool depthClamp) {
 }
 
 // Builds the setup of a window-space triangle with the given facing. Returns false when the
-// snapped triangle has no area. Vertex order is made counter-clockwise here.
+// snapped triangle has no area, or when a vertex lies beyond the fixed-point range (only
+// non-finite or absurdly large input gets there; see snap). Vertex order is made
+// counter-clockwise here.
 bool setupTriangle(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
                    const RenderState& state, const DepthCodec& codec, TriangleSetup& out);
 

@@ -56,10 +56,11 @@ double readDistanceOrInfinite(const YamlValue& v, const std::string& path) {
 const std::vector<Field<Scene>>& imageFields() {
   static const std::vector<Field<Scene>> fields{
       {"width", [](const YamlValue& v, Scene& s, const std::string& p, Provenance&) {
-         s.width = readInt(v, p, 0, kMaxImageSide * 16);  // the real limits are checked with both sides known
+         // Each side in the documented range; the pixel count is checked with both sides known.
+         s.width = readInt(v, p, 1, kMaxImageSide);
        }},
       {"height", [](const YamlValue& v, Scene& s, const std::string& p, Provenance&) {
-         s.height = readInt(v, p, 0, kMaxImageSide * 16);
+         s.height = readInt(v, p, 1, kMaxImageSide);
        }},
       {"depth", [](const YamlValue& v, Scene& s, const std::string& p, Provenance&) {
          s.depthFormat = readEnum(v, p, depthFormatNames());
@@ -76,7 +77,7 @@ const std::vector<Field<Camera>>& cameraFields() {
       {"fov", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) {
          c.fovYDegrees = readNumber(v, p);
          if (!(c.fovYDegrees > 0.0 && c.fovYDegrees < 180.0))
-           failAt(v.at, p + ": the vertical field of view must lie between 0 and 180 degrees, got " + v.scalar);
+           failAt(v.at, p + ": the vertical field of view must lie strictly between 0 and 180 degrees, got " + v.scalar);
        }},
       {"near", [](const YamlValue& v, Camera& c, const std::string& p, Provenance&) {
          c.nearPlane = readNumber(v, p);
