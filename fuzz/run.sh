@@ -47,7 +47,7 @@ flags=(-std=c++20 -g -O1 -fno-omit-frame-pointer -fsanitize=$sanitizers -fno-san
 # The libraries (folders of src/) each target needs, in link order.
 libs_of() {
   case $1 in
-    scene_loader | obj_import | gltf_import) echo scene ;;
+    scene_loader | obj_import | gltf_import) echo scene raster ;;
     render_values) echo shadow scene raster ;;
     image_compare) echo image raster ;;
     cli) echo cli shadow scene image raster ;;
@@ -208,6 +208,7 @@ for t in "${targets[@]}"; do
   set +e
   (cd "$out/$t/work" &&
     ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    LSAN_OPTIONS=suppressions="$root/fuzz/lsan.supp":print_suppressions=0 \
       "$out/${t}_fuzz" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 \
       -max_len=131072 -artifact_prefix="$out/artifacts/$t/" -print_final_stats=1 "${dict[@]}" \
       "${fuzz_flags[@]}" "$out/corpus/$t" "$out/seeds/$t") 2>&1 | tee "$out/$t/log" |
