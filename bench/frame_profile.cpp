@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "raster/allocator_tuning.h"
+#include "memory/allocator_tuning.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 

@@ -10,8 +10,8 @@
 
 #include "conformance/gl_state.h"
 #include "conformance/osmesa_harness.h"
-#include "raster/lighting.h"
-#include "raster/render_state.h"
+#include "gl/lighting.h"
+#include "gl/render_state.h"
 #include "shadow/facing.h"
 #include "shadow/light_view.h"
 #include "shadow/scene_passes.h"
@@ -153,7 +153,7 @@ void loadMatrix(GLenum mode, const glm::dmat4& m) {
   glLoadMatrixd(&m[0][0]);  // glm is column-major like GL
 }
 
-// shadowref's per-pixel Phong model (raster/lighting.cpp lightContribution, PerPixelLightingShader,
+// shadowref's per-pixel Phong model (gl/lighting.cpp lightContribution, PerPixelLightingShader,
 // and shadow_map_renderer.cpp ShadowMappedShader) in GLSL 1.20, in float. Everything that does not
 // depend on the fragment comes from lightTerms, computed in double on the CPU per draw exactly as
 // shadowref does, so only the per-fragment arithmetic is GL's. The world position and normal are

@@ -15,7 +15,7 @@
 //    materials light per pixel: Mesa does less work per fragment than shadowref, which flatters
 //    Mesa. The shadow-map compare-fail value is 0 (GL 2.1 without ARB_shadow_ambient), shadowref's
 //    0.4.
-//  - PerPixel: a GLSL 1.20 program with shadowref's per-pixel Phong model (raster/lighting.h:
+//  - PerPixel: a GLSL 1.20 program with shadowref's per-pixel Phong model (gl/lighting.h:
 //    normal renormalised per fragment, flipped on back faces, Phong or Blinn specular with pow), in
 //    float, with the light and material terms worked out by shadowref's own lightTerms; in the
 //    shadow-map camera pass it also does the depth compare (shadow2DProj on T · world position) and
@@ -28,7 +28,7 @@
 
 #include <memory>
 
-#include "raster/framebuffer.h"
+#include "gl/framebuffer.h"
 #include "scene/scene.h"
 
 namespace shadowref::bench {

@@ -58,7 +58,7 @@
 #include "cli/timing_stats.h"
 #include "image/image_writer.h"
 #include "mesa_frame.h"
-#include "raster/allocator_tuning.h"
+#include "memory/allocator_tuning.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/frames_in_turn.h"

@@ -47,10 +47,10 @@ flags=(-std=c++20 -g -O1 -fno-omit-frame-pointer -fsanitize=$sanitizers -fno-san
 # The libraries (folders of src/) each target needs, in link order.
 libs_of() {
   case $1 in
-    scene_loader | obj_import | gltf_import) echo scene raster ;;
-    render_values) echo shadow scene raster ;;
-    image_compare) echo image raster ;;
-    cli) echo cli shadow scene image raster ;;
+    scene_loader | obj_import | gltf_import) echo scene pipeline ;;
+    render_values) echo shadow scene pipeline ;;
+    image_compare) echo image pipeline ;;
+    cli) echo cli shadow scene image pipeline ;;
     *) echo "fuzz/run.sh: unknown target '$1' (targets: ${all_targets[*]})" >&2; return 1 ;;
   esac
 }
@@ -66,8 +66,13 @@ consider() {  # source object
     stale+=("$1" "$2")
   fi
 }
+# A library's sources: its folder of src/, or for the pipeline the three folders CMake's
+# shadowref_pipeline is made of.
+sources_of() {
+  if [ "$1" = pipeline ]; then echo src/gl/*.cpp src/exec/*.cpp src/memory/*.cpp; else echo src/"$1"/*.cpp; fi
+}
 for l in "${!needed[@]}"; do
-  for src in src/$l/*.cpp; do
+  for src in $(sources_of "$l"); do
     [ "$src" = src/cli/main.cpp ] && continue
     consider "$src" "$out/obj/$(echo "$src" | tr / _).o"
   done
@@ -82,7 +87,7 @@ if ((${#stale[@]})); then
 fi
 for l in "${!needed[@]}"; do
   objects=()
-  for src in src/$l/*.cpp; do
+  for src in $(sources_of "$l"); do
     [ "$src" = src/cli/main.cpp ] || objects+=("$out/obj/$(echo "$src" | tr / _).o")
   done
   lib=$out/lib/lib$l.a

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "cli/timing_stats.h"
-#include "raster/allocator_tuning.h"
-#include "raster/thread_pool.h"
+#include "memory/allocator_tuning.h"
+#include "exec/thread_pool.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/frames_in_turn.h"
 #include "shadow/shadow_method.h"

@@ -1,7 +1,7 @@
 #include "cli/render_metadata.h"
 
 #include "cli/version_info.h"
-#include "raster/thread_pool.h"
+#include "exec/thread_pool.h"
 #include "shadow/shadow_method.h"
 
 namespace shadowref::cli {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "image/image_writer.h"
-#include "raster/framebuffer.h"
+#include "gl/framebuffer.h"
 
 namespace shadowref {
 

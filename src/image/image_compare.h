@@ -9,7 +9,7 @@
 
 #include "image/channel_image.h"
 #include "image/image_writer.h"
-#include "raster/framebuffer.h"
+#include "gl/framebuffer.h"
 
 namespace shadowref {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "image/output_metadata.h"
-#include "raster/framebuffer.h"
+#include "gl/framebuffer.h"
 
 namespace shadowref {
 

@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raster/framebuffer.h"
+#include "gl/framebuffer.h"
 #include "scene/mesh.h"
 
 namespace shadowref {

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "raster/projection.h"
+#include "gl/projection.h"
 #include "scene/scene_sections.h"
 
 namespace shadowref {

@@ -1,4 +1,4 @@
-// What a draw call was, packed into the 32-bit tag the pixel history reports (raster/renderer.h):
+// What a draw call was, packed into the 32-bit tag the pixel history reports (exec/renderer.h):
 // the pass kind in the top 4 bits, the instance index below.
 #pragma once
 

@@ -3,8 +3,8 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "raster/clear.h"
-#include "raster/renderer.h"
+#include "gl/clear.h"
+#include "exec/renderer.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
 #include "shadow/shadow_method.h"

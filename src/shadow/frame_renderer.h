@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "raster/depth_compare_sampler.h"
-#include "raster/fragment_observer.h"
-#include "raster/framebuffer.h"
-#include "raster/raster_stats.h"
+#include "gl/depth_compare_sampler.h"
+#include "gl/fragment_observer.h"
+#include "gl/framebuffer.h"
+#include "gl/raster_stats.h"
 #include "scene/scene.h"
 
 namespace shadowref {

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "raster/thread_pool.h"
+#include "exec/thread_pool.h"
 
 namespace shadowref {
 

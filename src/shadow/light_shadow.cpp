@@ -4,8 +4,8 @@
 #include <bit>
 #include <cmath>
 
-#include "raster/clear.h"
-#include "raster/renderer.h"
+#include "gl/clear.h"
+#include "exec/renderer.h"
 #include "shadow/draw_tag.h"
 #include "shadow/focus_body.h"
 #include "shadow/focused_trapezoid.h"

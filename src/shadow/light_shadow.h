@@ -14,8 +14,8 @@
 #include <memory>
 #include <vector>
 
-#include "raster/depth_compare_sampler.h"
-#include "raster/raster_stats.h"
+#include "gl/depth_compare_sampler.h"
+#include "gl/raster_stats.h"
 #include "scene/scene.h"
 #include "shadow/light_view.h"
 #include "shadow/scene_view.h"

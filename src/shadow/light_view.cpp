@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "raster/projection.h"
+#include "gl/projection.h"
 
 namespace shadowref {
 

@@ -221,9 +221,8 @@ void drawInstance(Renderer& renderer, const RenderState& state, const LitInstanc
   // A Gouraud material's passes draw its shaded vertices, the others `vertices`: each pass the
   // same array, whose setups the next pass takes (SetupReuse).
   call.vertices = item.shadedVertices ? std::span<const ClipVertex>(*item.shadedVertices) : std::span<const ClipVertex>(p.vertices);
-  call.reuse = &p.setups;
   call.shader = &shader;
-  renderer.draw(call);
+  renderer.draw(call, &p.setups);
 }
 
 }  // namespace

@@ -7,10 +7,10 @@
 #include <span>
 #include <vector>
 
-#include "raster/lighting.h"
-#include "raster/renderer.h"
-#include "raster/vertex.h"
-#include "raster/vertex_stage.h"
+#include "gl/lighting.h"
+#include "exec/renderer.h"
+#include "gl/vertex.h"
+#include "gl/vertex_stage.h"
 #include "scene/scene.h"
 #include "shadow/draw_tag.h"
 #include "shadow/scene_view.h"

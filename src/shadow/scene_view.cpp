@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "raster/projection.h"
+#include "gl/projection.h"
 
 namespace shadowref {
 

@@ -3,7 +3,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raster/render_state.h"
+#include "gl/render_state.h"
 #include "scene/scene.h"
 
 namespace shadowref {

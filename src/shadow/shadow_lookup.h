@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raster/depth_compare_sampler.h"
+#include "gl/depth_compare_sampler.h"
 #include "shadow/light_view.h"
 
 namespace shadowref {

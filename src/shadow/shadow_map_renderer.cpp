@@ -6,10 +6,10 @@
 #include <memory>
 #include <sstream>
 
-#include "raster/accumulation.h"
-#include "raster/clear.h"
-#include "raster/color_columns.h"
-#include "raster/lighting.h"
+#include "gl/accumulation.h"
+#include "gl/clear.h"
+#include "exec/color_columns.h"
+#include "gl/lighting.h"
 #include "shadow/draw_tag.h"
 #include "shadow/light_shadow.h"
 #include "shadow/scene_passes.h"

@@ -11,7 +11,7 @@
 //      square area light, each ACCUMed with weight 1/n, then RETURN.
 #pragma once
 
-#include "raster/renderer.h"
+#include "exec/renderer.h"
 #include "scene/scene.h"
 #include "shadow/frame_renderer.h"
 

@@ -16,7 +16,7 @@
 
 #include <vector>
 
-#include "raster/render_state.h"
+#include "gl/render_state.h"
 
 namespace shadowref {
 

@@ -3,7 +3,7 @@
 // its texels on.
 #pragma once
 
-#include "raster/depth_compare_sampler.h"
+#include "gl/depth_compare_sampler.h"
 #include "shadow/trapezoid.h"
 
 namespace shadowref {

@@ -5,8 +5,8 @@
 #include <chrono>
 #include <numeric>
 
-#include "raster/clear.h"
-#include "raster/fragment_shader.h"
+#include "gl/clear.h"
+#include "gl/fragment_shader.h"
 #include "shadow/draw_tag.h"
 #include "shadow/facing.h"
 #include "shadow/occlusion_pyramid.h"

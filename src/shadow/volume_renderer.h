@@ -9,7 +9,7 @@
 // scene redrawn where stencil != 0.
 #pragma once
 
-#include "raster/renderer.h"
+#include "exec/renderer.h"
 #include "scene/scene.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/scene_view.h"

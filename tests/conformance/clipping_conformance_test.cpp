@@ -3,7 +3,7 @@
 // coordinates.
 #include "conformance/case_builder.h"
 
-#include "raster/projection.h"
+#include "gl/projection.h"
 
 using namespace shadowref;
 using namespace shadowref::conformance;

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "raster/accumulation.h"
-#include "raster/render_state.h"
+#include "gl/accumulation.h"
+#include "gl/render_state.h"
 
 namespace shadowref::conformance {
 

@@ -10,8 +10,8 @@
 
 #include <glm/glm.hpp>
 
-#include "raster/accumulation.h"
-#include "raster/render_state.h"
+#include "gl/accumulation.h"
+#include "gl/render_state.h"
 
 namespace shadowref::conformance {
 

@@ -1,10 +1,10 @@
 #include "conformance/shadowref_backend.h"
 
-#include "raster/accumulation.h"
-#include "raster/clear.h"
-#include "raster/fragment_shader.h"
-#include "raster/framebuffer.h"
-#include "raster/renderer.h"
+#include "gl/accumulation.h"
+#include "gl/clear.h"
+#include "gl/fragment_shader.h"
+#include "gl/framebuffer.h"
+#include "exec/renderer.h"
 
 namespace shadowref::conformance {
 

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "raster/renderer.h"
+#include "exec/renderer.h"
 
 namespace shadowref::extremes {
 

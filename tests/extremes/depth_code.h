@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "raster/framebuffer.h"
+#include "gl/framebuffer.h"
 
 namespace shadowref::extremes {
 

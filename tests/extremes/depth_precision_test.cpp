@@ -17,8 +17,8 @@
 
 #include "extremes/depth_code.h"
 #include "extremes/extreme_scene.h"
-#include "raster/projection.h"
-#include "raster/renderer.h"
+#include "gl/projection.h"
+#include "exec/renderer.h"
 
 using namespace shadowref;
 using namespace shadowref::extremes;

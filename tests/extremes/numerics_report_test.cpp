@@ -9,7 +9,7 @@
 
 #include "extremes/depth_code.h"
 #include "extremes/extreme_scene.h"
-#include "raster/projection.h"
+#include "gl/projection.h"
 
 using namespace shadowref;
 using namespace shadowref::extremes;

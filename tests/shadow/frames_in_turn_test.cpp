@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "raster/thread_pool.h"
+#include "exec/thread_pool.h"
 #include "shadow/frames_in_turn.h"
 #include "support/frame_compare.h"
 #include "support/generated_scene.h"

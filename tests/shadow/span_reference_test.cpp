@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "raster/renderer.h"
+#include "exec/renderer.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 #include "support/frame_compare.h"

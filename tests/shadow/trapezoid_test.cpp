@@ -4,7 +4,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "raster/projection.h"
+#include "gl/projection.h"
 #include "shadow/light_view.h"
 #include "shadow/trapezoid.h"
 

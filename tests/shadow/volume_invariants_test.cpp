@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "raster/renderer.h"
+#include "exec/renderer.h"
 #include "scene/scene_loader.h"
 #include "shadow/facing.h"
 #include "shadow/frame_renderer.h"

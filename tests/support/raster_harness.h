@@ -16,11 +16,11 @@
 
 #include <glm/glm.hpp>
 
-#include "raster/fragment_shader.h"
-#include "raster/framebuffer.h"
-#include "raster/render_state.h"
-#include "raster/renderer.h"
-#include "raster/vertex.h"
+#include "gl/fragment_shader.h"
+#include "gl/framebuffer.h"
+#include "gl/render_state.h"
+#include "exec/renderer.h"
+#include "gl/vertex.h"
 
 namespace shadowref::testing {
 

@@ -1,0 +1,128 @@
+// The per-fragment path of one draw: depth and varyings at the pixel centre, then the GL
+// operations of fragment_ops.h in order, then the writes. Colour work (shading, blending) is done
+// only for fragments that survive the stencil and depth tests and only when colour is written at
+// all, so stencil-only passes (shadow volumes) never shade.
+//
+// Triangles are processed in one of four ways chosen once per draw from the state. Stencil
+// counting (volume passes: no colour, no depth write, stencil ALWAYS with KEEP / INCR_WRAP /
+// DECR_WRAP), depth only (shadow maps) and one constant colour (the ambient pass) walk each
+// triangle's rows straight to the buffers, eight pixels per step; a row's last pixels are one more
+// step of eight whose lanes outside the span store back what they read. Everything else goes row
+// span by row span in chunks: the depth codes of the chunk first, then the tests (a chunk the
+// stencil test discards whole, where failing writes nothing, is only counted); the surviving
+// fragments wait, row after row, until a batch of them is full or the triangle ends, and are
+// shaded and written together. Each pixel is changed at most once per triangle, so the order of
+// a triangle's writes changes no byte. The watched pixel (pixel history)
+// always takes the one-fragment path, which records every step; the rest of its triangle takes
+// the chunked path.
+#pragma once
+
+#include "gl/fragment_observer.h"
+#include "gl/fragment_shader.h"
+#include "gl/framebuffer.h"
+#include "gl/raster_stats.h"
+#include "gl/render_state.h"
+#include "gl/triangle_setup.h"
+
+namespace shadowref {
+
+struct PixelWatch {
+  int x = -1, y = -1;
+  FragmentObserver* observer = nullptr;
+  uint64_t drawIndex = 0;
+  uint32_t drawTag = 0;
+};
+
+class FragmentProcessor {
+ public:
+  FragmentProcessor(Framebuffer& fb, const RenderState& state, const FragmentShader* shader,
+                    RasterStats& stats, const PixelWatch* watch);
+
+  void process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
+    if (watch_ && watch_->observer && x == watch_->x && y == watch_->y) [[unlikely]]
+      processImpl<true>(t, x, y, e0, e1, e2);
+    else
+      processImpl<false>(t, x, y, e0, e1, e2);
+  }
+
+  // Every covered pixel of the triangle inside `region`, row by row.
+  void processTriangle(const TriangleSetup& t, const Rect& region);
+
+  // Every pixel of row y from xl to xr (inclusive); e holds the unbiased edge values at (xl, y).
+  void processSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
+
+  // Whether fragments drawn in `state` with `shader` do nothing but add 0, 1 or 255 modulo 256 to
+  // the stencil (the shadow volumes' counting: the test always passes, every op KEEP, INCR_WRAP or
+  // DECR_WRAP, no colour or depth written). Such draws give the same bytes in any order.
+  static bool onlyAddsToStencil(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader);
+  // For such a state: add the counts to `stencil` (laid out as the framebuffer's stencil) instead
+  // of the framebuffer's stencil buffer; the depth buffer is still the framebuffer's.
+  void countInto(uint8_t* stencil) { countTarget_ = stencil; }
+
+ private:
+  enum class SpanLoop : uint8_t { StencilCount, DepthOnly, ConstantColor, General };
+  static constexpr int kChunk = 64;
+  static_assert(kChunk <= kMaxBatch, "a chunk's survivors are shaded as one batch");
+
+  SpanLoop chooseSpanLoop() const;
+  // processSpan without shading what waits (the rows of processTriangle's general path).
+  void queueSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
+  void runSpan(const TriangleSetup& t, int y, int xl, int xr, const int64_t e[3]);
+  void depthCodes(const TriangleSetup& t, int y, int x, int n, uint32_t* codes) const;
+  void countTriangle(const TriangleSetup& t, const Rect& region);
+  void depthTriangle(const TriangleSetup& t, const Rect& region);
+  void constantColorTriangle(const TriangleSetup& t, const Rect& region);
+  void generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl, const int64_t e[3]);
+  int testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors);
+  int filterChunk(const StencilFaceState& face, size_t at, int n, const uint32_t* codes, int* survivors);
+  // Fragments of one triangle to shade together: pixels, depths and perspective weights.
+  struct Shading {
+    int count = 0;
+    int x[kMaxBatch], y[kMaxBatch];
+    double depth[kMaxBatch], b0[kMaxBatch], b1[kMaxBatch], b2[kMaxBatch];
+  };
+  template <class Offset>
+  void shadeAndWrite(const TriangleSetup& t, const Shading& f, glm::vec4* color, const Offset* offsets);
+  // Shades the waiting survivors as one batch and writes their colours.
+  void shadeWaiting();
+  template <class Offset>
+  void writeColors(glm::vec4* color, const Offset* offsets, int count, const glm::dvec4* shaded) const;
+
+  // One body for both paths; the watched one also records a FragmentEvent (pixel history).
+  template <bool Watched>
+  void processImpl(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2);
+  double fragmentDepth(const TriangleSetup& t, int x, int y) const;
+  void interpolateVaryings(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2, double* out) const;
+  glm::dvec4 shade(const TriangleSetup& t, int x, int y, double z, int64_t e0, int64_t e1, int64_t e2) const;
+
+  Framebuffer& fb_;
+  const RenderState& state_;
+  const FragmentShader* shader_;
+  RasterStats& stats_;
+  const PixelWatch* watch_;
+  bool writesColor_, usesDepth_, writesDepth_, usesStencil_;
+  int varyingCount_;
+  double depthLo_, depthHi_;
+  SpanLoop spanLoop_;
+  const glm::dvec4* constantColor_ = nullptr;  // the shader's colour when it has only one
+  uint8_t* countTarget_ = nullptr;  // countInto's buffer; nullptr: the framebuffer's stencil
+  // Per facing: whether a fragment that fails the stencil test changes nothing (the test can fail
+  // and its fail op writes nothing). A chunk of such fragments that all fail — a lit pass's "equal
+  // to 0" over a shadowed stretch — is counted and skipped before its depths are made: GL discards
+  // a fragment that fails the stencil test before the depth test ([GL 2.1, §4.1.5]), so its depth
+  // code, depth test and shading would be thrown away.
+  bool discardsUnchanged_[2] = {false, false};
+
+  // The surviving fragments of the current triangle's chunks that wait to be shaded: a chunk of a
+  // row span holds about 15 of them on average in a frame of small triangles (the outdoor scene's
+  // camera pass), where shading, lookups and writes cost nearly as much per call as per fragment. Their
+  // weights are the chunk's (generalChunk), their order the rows', and they are shaded before the
+  // triangle's rows end (shadeWaiting).
+  struct Waiting : Shading {
+    const TriangleSetup* triangle = nullptr;
+    size_t at[kMaxBatch];  // buffer index
+  };
+  Waiting waiting_;
+};
+
+}  // namespace shadowref

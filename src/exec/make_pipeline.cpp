@@ -1,0 +1,20 @@
+// makePipeline (gl/pipeline.h): the one place that knows both pipelines' types, so that the
+// algorithms and the command include neither.
+#include "exec/fast_pipeline.h"
+#include "gl/pipeline.h"
+
+namespace shadowref {
+
+const char* name(PipelineKind kind) { return kind == PipelineKind::Reference ? "reference" : "fast"; }
+
+std::unique_ptr<Pipeline> makePipeline(PipelineKind kind, Framebuffer& fb, int threads) {
+  switch (kind) {
+    case PipelineKind::Fast:
+      return std::make_unique<FastPipeline>(fb, threads);
+    case PipelineKind::Reference:
+      break;  // the reference pipeline (gl/reference_pipeline.h) is added with its stages
+  }
+  return nullptr;
+}
+
+}  // namespace shadowref

@@ -1,0 +1,201 @@
+#include "exec/thread_pool.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <memory>
+
+namespace shadowref {
+
+namespace {
+int64_t nanosecondsNow() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// How long an idle worker spins before it sleeps: longer than the serial work between two
+// rasterizations (building a pass's volumes, setting up its triangles), so that the worker is
+// there when the bands are handed out; short enough not to hold a core between frames.
+constexpr std::chrono::microseconds kSpinTime{3000};
+
+// Tasks a claim takes: a kClaimShare-th of a thread's share of those left (guided
+// self-scheduling). A claim is an atomic operation on a cache line every thread writes — between
+// cores 50 to a few hundred nanoseconds — so a run of many small tasks (microseconds each)
+// claimed one at a time leaves the threads idle for a large part of it; claimed a share at a time,
+// the claims are few. Large claims first, single tasks at the end, so that the threads still
+// end together; a run of fewer than 2 x kClaimShare tasks a thread (the bands of a pass, already
+// cut into shrinking shares) is claimed one task at a time, as before.
+constexpr int kClaimShare = 8;
+
+// One step of a wait loop. The two hardware threads of this machine may be siblings of one core:
+// a sibling that waits in sched_yield (a system call a step) takes issue slots from the one that
+// works. The x86 PAUSE instruction lets the worker have them; every 16th step still yields, so that
+// more threads than cores (the determinism tests run 8 on 2) take turns.
+inline void relax(int step) {
+#if defined(__x86_64__) || defined(__i386__)
+  if ((step & 15) != 15) {
+    __builtin_ia32_pause();
+    return;
+  }
+#endif
+  (void)step;
+  std::this_thread::yield();
+}
+}  // namespace
+
+ThreadPool* threadPoolForThisThread(int threads) {
+  if (threads <= 1) return nullptr;
+  thread_local std::map<int, std::unique_ptr<ThreadPool>> pools;
+  std::unique_ptr<ThreadPool>& pool = pools[threads];
+  if (!pool) pool = std::make_unique<ThreadPool>(threads);
+  return pool.get();
+}
+
+int ThreadPool::claimSize(int left, int threads) { return std::max(1, left / (kClaimShare * threads)); }
+
+int defaultThreadCount() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n == 0 ? 1 : int(n);
+}
+
+ThreadPool::ThreadPool(int threads) {
+  for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { workerLoop(); });
+}
+
+ThreadPool::~ThreadPool() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& t : workers_) t.join();
+}
+
+void ThreadPool::drain(uint32_t generation) {
+  uint64_t ticket = ticket_.load(std::memory_order_acquire);
+  for (;;) {
+    // count_ may already be the next run's (run() stores it after closing this run's tickets):
+    // then the claim below fails, because the acquire load saw that store and so the ticket
+    // stored before it. A claim that succeeds therefore saw this run's count.
+    const int first = int(ticket & 0xFFFFFFFFu), count = count_.load(std::memory_order_acquire);
+    if (uint32_t(ticket >> 32) != generation || first >= count) return;
+    const int claimed = claimSize(count - first, threadCount());
+    if (!ticket_.compare_exchange_weak(ticket, ticket + uint64_t(claimed), std::memory_order_acq_rel)) continue;
+    // The claimed tasks belong to this run, which cannot end before they are done: task_ is its.
+    const bool timing = timing_.load(std::memory_order_relaxed);
+    const int64_t start = timing ? nanosecondsNow() : 0;
+    const std::function<void(int)>& task = *task_.load(std::memory_order_relaxed);
+    for (int i = first; i < first + claimed; ++i) {
+      try {
+        task(i);
+      } catch (...) {
+        std::lock_guard lock(mutex_);
+        if (!error_) error_ = std::current_exception();
+      }
+    }
+    if (timing) taskNanoseconds_.fetch_add(nanosecondsNow() - start, std::memory_order_relaxed);
+    done_.fetch_add(claimed, std::memory_order_release);
+    ticket = ticket_.load(std::memory_order_acquire);
+  }
+}
+
+uint32_t ThreadPool::waitForWork(uint32_t seen) {
+  const auto spinUntil = std::chrono::steady_clock::now() + kSpinTime;
+  for (int spins = 0;; ++spins) {
+    const uint32_t g = generation_.load(std::memory_order_acquire);
+    if (g != seen || stop_.load(std::memory_order_acquire)) return g;
+    if ((spins & 63) == 63 && !awake_.load(std::memory_order_relaxed) && std::chrono::steady_clock::now() > spinUntil)
+      break;
+    relax(spins);
+  }
+  // Sleep. sleepers_ is raised before generation_ is read again and run() raises generation_
+  // before it reads sleepers_ (both sequentially consistent), so one of the two sees the other.
+  std::unique_lock lock(mutex_);
+  sleepers_.fetch_add(1);
+  wake_.wait(lock, [&] { return stop_.load() || generation_.load() != seen; });
+  sleepers_.fetch_sub(1);
+  return generation_.load();
+}
+
+void ThreadPool::workerLoop() {
+  uint32_t seen = 0;
+  for (;;) {
+    seen = waitForWork(seen);
+    if (stop_.load(std::memory_order_acquire)) return;
+    drain(seen);
+  }
+}
+
+void ThreadPool::keepAwake(bool on) { awake_.store(on, std::memory_order_relaxed); }
+
+void ThreadPool::timeRuns(bool on) {
+  taskNanoseconds_ = 0;
+  records_.clear();
+  timing_ = on;
+}
+
+// Every task of the run added its time before it counted itself done, and run() saw all of them
+// done: the task time read here is the run's whole.
+void ThreadPool::recordRun(int tasks, int64_t start, int64_t tasksBefore) {
+  const int64_t end = nanosecondsNow();
+  records_.push_back({tasks, start, end, taskNanoseconds_.load() - tasksBefore});
+}
+
+ThreadPool::Times ThreadPool::times() const {
+  Times t;
+  int64_t runNanoseconds = 0;
+  for (const RunRecord& r : records_) {
+    t.runs += 1;
+    t.tasks += r.tasks;
+    runNanoseconds += r.end - r.start;
+  }
+  t.runMilliseconds = double(runNanoseconds) * 1e-6;
+  t.taskMilliseconds = double(taskNanoseconds_.load()) * 1e-6;
+  return t;
+}
+
+void ThreadPool::run(int count, const std::function<void(int)>& task) {
+  const bool timing = timing_.load(std::memory_order_relaxed);
+  const int64_t start = timing ? nanosecondsNow() : 0;
+  const int64_t tasksBefore = timing ? taskNanoseconds_.load() : 0;
+  if (workers_.empty() || count <= 1) {
+    std::exception_ptr error;
+    for (int i = 0; i < count; ++i) {
+      try {
+        task(i);
+      } catch (...) {
+        if (!error) error = std::current_exception();
+      }
+    }
+    if (timing) {  // the caller's tasks, one after another, are the whole run
+      taskNanoseconds_ += nanosecondsNow() - start;
+      recordRun(count, start, tasksBefore);
+    }
+    if (error) std::rethrow_exception(error);
+    return;
+  }
+  // The new run's ticket goes first: a worker late from the last run, holding that run's last
+  // ticket, could otherwise pair it with this run's count_ and claim (and run) a task of this run
+  // that is then claimed again. Workers enter this run's drain only through generation_, whose
+  // store publishes task_, count_ and done_.
+  const uint32_t generation = generation_.load(std::memory_order_relaxed) + 1;
+  ticket_.store(uint64_t(generation) << 32, std::memory_order_relaxed);
+  task_.store(&task, std::memory_order_relaxed);
+  done_.store(0, std::memory_order_relaxed);
+  count_.store(count, std::memory_order_release);  // after the ticket: see drain
+  generation_.store(generation);                    // sequentially consistent: see waitForWork
+  if (sleepers_.load() > 0) {
+    std::lock_guard lock(mutex_);
+    wake_.notify_all();
+  }
+  drain(generation);
+  for (int step = 0; done_.load(std::memory_order_acquire) < count; ++step) relax(step);
+  if (timing) recordRun(count, start, tasksBefore);
+  std::exception_ptr error;
+  {
+    std::lock_guard lock(mutex_);
+    std::swap(error, error_);
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace shadowref

@@ -1,0 +1,31 @@
+// Pixel history: every fragment that reaches one watched pixel is reported with what each test
+// decided and what the buffers held before and after. It answers "why is this pixel in shadow?".
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "gl/render_state.h"
+
+namespace shadowref {
+
+struct FragmentEvent {
+  int x = 0, y = 0;
+  uint64_t drawIndex = 0;   // counts draw calls of this renderer
+  uint32_t drawTag = 0;     // what the caller said the draw is (object, volume part, pass)
+  Facing facing = FrontFacing;
+  double depth = 0.0;       // fragment depth, in the buffer's format
+  double storedDepth = 0.0; // what the depth buffer held before
+  bool scissorPassed = true, stencilPassed = true, depthPassed = true;
+  uint8_t stencilBefore = 0, stencilAfter = 0;
+  glm::vec4 colorBefore{0.0f}, colorAfter{0.0f};
+};
+
+class FragmentObserver {
+ public:
+  virtual ~FragmentObserver() = default;
+  virtual void onFragment(const FragmentEvent& event) = 0;
+};
+
+}  // namespace shadowref

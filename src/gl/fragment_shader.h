@@ -1,0 +1,78 @@
+// The pluggable shading stage: everything that computes a colour (lighting, shadow-map lookups)
+// lives outside the rasterizer behind this interface, so that the
+// rasterizer stays the same for every shading model.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "gl/render_state.h"
+#include "gl/vertex.h"
+
+namespace shadowref {
+
+struct FragmentInput {
+  int x = 0, y = 0;          // pixel; its centre is (x + 0.5, y + 0.5)
+  double depth = 0.0;        // window depth after offset and clamping
+  Facing facing = FrontFacing;
+  const double* varyings = nullptr;  // perspective-correct, varyingCount() of them
+};
+
+// Fragments of one triangle, shaded together: column by column (structure of arrays), so a
+// shader can run its arithmetic over all of them in vector registers.
+inline constexpr int kMaxBatch = 64;
+
+// What a fragment that passes its tests costs, in quarters of a plain one's (interpolating a few
+// varyings or none, a colour written): the unit of FragmentShader::fragmentWork.
+inline constexpr int kPlainFragmentWork = 4;
+struct FragmentBatch {
+  int count = 0;
+  Facing facing = FrontFacing;
+  const int* x = nullptr;           // x[k], y[k]: the pixel of fragment k
+  const int* y = nullptr;
+  const double* depth = nullptr;    // depth[k]
+  const double* varyings[kMaxVaryings]{};  // varyings[j][k]: varying j of fragment k
+};
+
+class FragmentShader {
+ public:
+  virtual ~FragmentShader() = default;
+  // How many varyings of the vertices this shader reads; the rasterizer interpolates only those.
+  virtual int varyingCount() const = 0;
+  virtual glm::dvec4 shade(const FragmentInput& in) const = 0;
+  // The colour every fragment gets when it does not depend on the fragment, else nullptr: the
+  // rasterizer then skips interpolation and the call per fragment.
+  virtual const glm::dvec4* constantColor() const { return nullptr; }
+  // shade() for every fragment of the batch; a shader overrides it to work on all at once. It
+  // must give the bits shade() gives.
+  virtual void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const;
+  // What shading a fragment costs, in quarters of a plain fragment's (kPlainFragmentWork). Read only
+  // by the bands' estimate of each row's work (row_work.h), which compares the draws of one flush:
+  // a specular surface costs a lit fragment markedly more than a diffuse one, and weighed alike the
+  // band of its rows would get more than its share. Rough by design — any
+  // split gives the same bytes.
+  virtual int fragmentWork() const { return kPlainFragmentWork; }
+};
+
+// Outputs the first four varyings as RGBA: flat or Gouraud colour, and the conformance tests.
+class ColorVaryingShader final : public FragmentShader {
+ public:
+  int varyingCount() const override { return 4; }
+  glm::dvec4 shade(const FragmentInput& in) const override {
+    return {in.varyings[0], in.varyings[1], in.varyings[2], in.varyings[3]};
+  }
+  void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override;
+};
+
+// One colour for every fragment.
+class ConstantColorShader final : public FragmentShader {
+ public:
+  explicit ConstantColorShader(const glm::dvec4& color) : color_(color) {}
+  int varyingCount() const override { return 0; }
+  glm::dvec4 shade(const FragmentInput&) const override { return color_; }
+  const glm::dvec4* constantColor() const override { return &color_; }
+
+ private:
+  glm::dvec4 color_;
+};
+
+}  // namespace shadowref
