@@ -97,10 +97,6 @@ class ThreadPool {
   std::vector<RunRecord> records_;  // written by the calling thread only, at each run's end: times() sums them
 };
 
-// Runs task(i) for i in [0, count), on several threads or on this one (Renderer::parallelFor); an
-// empty one: on this thread. What work outside the renderer's draws (a clear) is handed.
-using ParallelFor = std::function<void(int count, const std::function<void(int)>& task)>;
-
 // The pool of `threads` threads that the calling thread keeps for its renderers (nullptr for 1):
 // made at the first call and kept until the calling thread ends, so that a program rendering frame
 // after frame — each frame a Renderer, each shadow map another — starts no threads per frame (a

@@ -7,15 +7,20 @@
 // into it next, right before it does (Renderer::clear): the band is then in that thread's cache.
 #pragma once
 
+#include <functional>
 #include <optional>
 
 #include <glm/glm.hpp>
 
 #include "gl/framebuffer.h"
 #include "gl/render_state.h"
-#include "exec/thread_pool.h"
 
 namespace shadowref {
+
+// Runs task(i) for i in [0, count) and returns when all are done, on several threads or on this
+// one (the fast executor hands its thread pool, Renderer::parallelFor); an empty one: on this
+// thread, in order, as the reference pipeline clears. What a clear's parts of rows are handed.
+using ParallelFor = std::function<void(int count, const std::function<void(int)>& task)>;
 
 // The pixels a clear or an accumulation operation touches: the buffer, cut to the scissor box.
 Rect clearRegion(const Framebuffer& fb, const RenderState& state);

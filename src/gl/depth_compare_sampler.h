@@ -40,7 +40,8 @@ struct DepthCompareSampler {
   double sample(const glm::dvec4& strq) const;
   // sample() after its division: the texture coordinates s/q, t/q and the depth r/q.
   double sampleDivided(double s, double t, double r) const;
-  // sampleDivided for `count` points, into out[k]: the same bits, four points at a time.
+  // sampleDivided for `count` points, into out[k]: the same bits, four points at a time (defined
+  // with the executor's vector kernels, exec/sampler_kernels.cpp).
   void sampleDivided(const double* s, const double* t, const double* r, int count, double* out) const;
   // k x k percentage-closer filtering around the nearest texel (k odd): the mean of the k^2
   // comparisons, each 1 or failValue.
