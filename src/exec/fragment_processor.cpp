@@ -16,26 +16,13 @@
 #include "exec/compare_dispatch.h"
 #include "exec/depth_lanes.h"
 #include "gl/fragment_ops.h"
+#include "gl/fragment_stage.h"
+#include "gl/per_fragment.h"
 #include "exec/rasterizer.h"
 
 namespace shadowref {
 
 namespace {
-
-// Which buffers a state's fragments read and write.
-struct BufferUse {
-  bool writesColor, usesDepth, writesDepth, usesStencil;
-};
-BufferUse bufferUse(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader) {
-  const bool anyColorChannel = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
-  BufferUse u;
-  u.writesColor = shader != nullptr && anyColorChannel && fb.hasColor();
-  // GL: with the depth test disabled (or no depth buffer) the test passes and nothing is written.
-  u.usesDepth = state.depthTest && fb.hasDepth();
-  u.writesDepth = u.usesDepth && state.depthWrite;
-  u.usesStencil = state.stencilTest && fb.hasStencil();
-  return u;
-}
 
 bool addsToStencil(const RenderState& state);
 
@@ -62,38 +49,6 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   }
 }
 
-double FragmentProcessor::fragmentDepth(const TriangleSetup& t, int x, int y) const {
-  double z = planeDepthAt(t, x, y) + t.depthOffset;
-  if (state_.depthClamp) z = std::clamp(z, depthLo_, depthHi_);
-  return z;  // the depth codec clamps to [0, 1] when it converts
-}
-
-void FragmentProcessor::interpolateVaryings(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2,
-                                            double* out) const {
-  // Perspective-correct: weights lambda_i / w_i, normalised ([GL 2.1, §3.5.1, eq. 3.6]).
-  const double b0 = double(e0) * t.v[0].invW;
-  const double b1 = double(e1) * t.v[1].invW;
-  const double b2 = double(e2) * t.v[2].invW;
-  const double inv = 1.0 / (b0 + b1 + b2);
-  const double* a0 = t.v[0].source->varyings.data();
-  const double* a1 = t.v[1].source->varyings.data();
-  const double* a2 = t.v[2].source->varyings.data();
-  for (int k = 0; k < varyingCount_; ++k) out[k] = (b0 * a0[k] + b1 * a1[k] + b2 * a2[k]) * inv;
-}
-
-glm::dvec4 FragmentProcessor::shade(const TriangleSetup& t, int x, int y, double z, int64_t e0, int64_t e1,
-                                    int64_t e2) const {
-  double varyings[kMaxVaryings];
-  interpolateVaryings(t, e0, e1, e2, varyings);
-  FragmentInput in;
-  in.x = x;
-  in.y = y;
-  in.depth = z;
-  in.facing = t.facing;
-  in.varyings = varyings;
-  return shader_->shade(in);
-}
-
 template <bool watched>
 void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
   if (!scissorTest(state_, x, y)) return;
@@ -111,7 +66,7 @@ void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_
     if (fb_.hasColor()) event.colorBefore = event.colorAfter = fb_.color()[at];
   }
 
-  const double z = fragmentDepth(t, x, y);
+  const double z = fragmentDepth(t, x, y, state_);
   const uint32_t zCode = fb_.depthCodec().encode(z);
   if constexpr (watched) event.depth = fb_.depthCodec().decode(zCode);
 
@@ -153,7 +108,7 @@ void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_
 
   if (writesColor_) {
     glm::vec4& dst = fb_.color()[at];
-    const glm::dvec4 src = shade(t, x, y, fb_.depthCodec().decode(zCode), e0, e1, e2);
+    const glm::dvec4 src = shadeFragment(*shader_, t, x, y, fb_.depthCodec().decode(zCode), e0, e1, e2);
     dst = writeColor(dst, blend(state_.blend, src, glm::dvec4(dst)), state_.colorMask);
     ++stats_.colorWrites;
     if constexpr (watched) event.colorAfter = dst;

@@ -26,13 +26,6 @@
 
 namespace shadowref {
 
-struct PixelWatch {
-  int x = -1, y = -1;
-  FragmentObserver* observer = nullptr;
-  uint64_t drawIndex = 0;
-  uint32_t drawTag = 0;
-};
-
 class FragmentProcessor {
  public:
   FragmentProcessor(Framebuffer& fb, const RenderState& state, const FragmentShader* shader,
@@ -91,9 +84,6 @@ class FragmentProcessor {
   // One body for both paths; the watched one also records a FragmentEvent (pixel history).
   template <bool Watched>
   void processImpl(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2);
-  double fragmentDepth(const TriangleSetup& t, int x, int y) const;
-  void interpolateVaryings(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2, double* out) const;
-  glm::dvec4 shade(const TriangleSetup& t, int x, int y, double z, int64_t e0, int64_t e1, int64_t e2) const;
 
   Framebuffer& fb_;
   const RenderState& state_;

@@ -2,6 +2,7 @@
 // algorithms and the command include neither.
 #include "exec/fast_pipeline.h"
 #include "gl/pipeline.h"
+#include "gl/reference_pipeline.h"
 
 namespace shadowref {
 
@@ -12,7 +13,7 @@ std::unique_ptr<Pipeline> makePipeline(PipelineKind kind, Framebuffer& fb, int t
     case PipelineKind::Fast:
       return std::make_unique<FastPipeline>(fb, threads);
     case PipelineKind::Reference:
-      break;  // the reference pipeline (gl/reference_pipeline.h) is added with its stages
+      return std::make_unique<ReferencePipeline>(fb);
   }
   return nullptr;
 }

@@ -13,30 +13,6 @@
 
 namespace shadowref {
 
-namespace {
-
-bool lexicographicallyLess(const glm::dvec4& a, const glm::dvec4& b) {
-  for (int i = 0; i < 4; ++i) {
-    if (a[i] < b[i]) return true;
-    if (a[i] > b[i]) return false;
-  }
-  return false;
-}
-
-// Rotates (a, b, c) so that the smallest vertex comes first, keeping the winding. The same
-// triangle then goes through clipping and setup with the same arithmetic however its vertices were
-// listed, so a shadow volume's front cap gets bit-for-bit the depths of the scene pass.
-void canonicalRotation(const ClipVertex*& a, const ClipVertex*& b, const ClipVertex*& c) {
-  const ClipVertex* v[3] = {a, b, c};
-  int m = 0;
-  if (lexicographicallyLess(v[1]->position, v[m]->position)) m = 1;
-  if (lexicographicallyLess(v[2]->position, v[m]->position)) m = 2;
-  a = v[m];
-  b = v[(m + 1) % 3];
-  c = v[(m + 2) % 3];
-}
-
-}  // namespace
 
 namespace {
 std::atomic<bool> referencePathForNewRenderers{false};
@@ -71,25 +47,6 @@ void Renderer::clearsNow() {
 void Renderer::setThreads(int threads) {
   if (threads <= 0) threads = defaultThreadCount();
   pool_ = threadPoolForThisThread(threads);
-}
-
-double guardBandFor(const Viewport& vp) {
-  const double extent = double(std::max({vp.width, vp.height, 1}));
-  return std::max(1.0, double(1 << 20) / extent);
-}
-
-Rect drawRegion(const RenderState& state, const Framebuffer& fb) {
-  int x0 = std::max({0, state.viewport.x});
-  int y0 = std::max({0, state.viewport.y});
-  int x1 = std::min(fb.width(), state.viewport.x + state.viewport.width);
-  int y1 = std::min(fb.height(), state.viewport.y + state.viewport.height);
-  if (state.scissorTest) {
-    x0 = std::max(x0, state.scissor.x);
-    y0 = std::max(y0, state.scissor.y);
-    x1 = std::min(x1, state.scissor.x + state.scissor.width);
-    y1 = std::min(y1, state.scissor.y + state.scissor.height);
-  }
-  return Rect{x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
 
 void Renderer::addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
@@ -176,11 +133,6 @@ void Renderer::appendTriangles(const DrawCall& call, size_t first, size_t last, 
 }
 
 namespace {
-// How many triangles a draw has: three indices each, or three vertices each without indices.
-size_t trianglesOf(const DrawCall& call) {
-  return call.indices.empty() ? call.vertices.size() / 3 : call.indices.size() / 3;
-}
-
 // Triangle assembly is split into chunks of this many triangles when there are threads; each
 // chunk's setups are appended in chunk order, so the list is the same as on one thread.
 constexpr size_t kAssemblyChunk = 128;
@@ -233,17 +185,6 @@ void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes, Ve
   corners.base = call.vertices.data();
 }
 
-namespace {
-// Every index of a draw within its vertices, or std::out_of_range before anything of it is
-// assembled, queued or drawn. The largest index, in a loop without an exit: it vectorises (a
-// large pass has hundreds of thousands of indices, checked on the calling thread).
-void checkIndices(const DrawCall& call) {
-  uint32_t largest = 0;
-  for (const uint32_t index : call.indices) largest = std::max(largest, index);
-  if (!call.indices.empty() && largest >= call.vertices.size()) throw std::out_of_range("draw: vertex index out of range");
-}
-}  // namespace
-
 void Renderer::draw(const DrawCall& call, SetupReuse* reuseRequest) {
   const RenderState& state = *call.state;
   const bool anyColor = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
@@ -255,10 +196,7 @@ void Renderer::draw(const DrawCall& call, SetupReuse* reuseRequest) {
   watch_.drawIndex = drawCount_++;
   watch_.drawTag = call.tag;
 
-  ClipPlanes planes;
-  planes.nearPlane = !state.depthClamp;
-  planes.farPlane = state.clipFar && !state.depthClamp;
-  planes.guardBand = guardBandFor(state.viewport);
+  const ClipPlanes planes = clipPlanesFor(state);
   const int varyingCount = call.shader ? call.shader->varyingCount() : 0;
 
   const size_t triangleCount = trianglesOf(call);

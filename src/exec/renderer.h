@@ -18,6 +18,7 @@
 #include "exec/fragment_processor.h"
 #include "gl/fragment_shader.h"
 #include "gl/framebuffer.h"
+#include "gl/primitive_assembly.h"
 #include "gl/raster_stats.h"
 #include "gl/render_state.h"
 #include "exec/row_work.h"
@@ -323,9 +324,6 @@ class DeferredDraws {
   int kept_;
 };
 
-// The rectangle of pixels a draw may touch: viewport, framebuffer and (if on) scissor.
-Rect drawRegion(const RenderState& state, const Framebuffer& fb);
-
 // The part of a draw's region in rows [y0, y1]: what a band of those rows rasterizes of the draw.
 inline Rect regionInRows(const Rect& region, int y0, int y1) {
   Rect band = region;
@@ -333,9 +331,5 @@ inline Rect regionInRows(const Rect& region, int y0, int y1) {
   band.height = std::min(y1, region.y + region.height - 1) - band.y + 1;
   return band;
 }
-
-// Guard band G (clipper.h) for a viewport: window coordinates stay within about 2^20 pixels, so
-// fixed-point edge functions fit comfortably in 64 bits.
-double guardBandFor(const Viewport& vp);
 
 }  // namespace shadowref

@@ -28,4 +28,13 @@ class FragmentObserver {
   virtual void onFragment(const FragmentEvent& event) = 0;
 };
 
+// The watched pixel of a draw: its fragments are reported to `observer` (nullptr: none), with the
+// draw's index among the pipeline's draws and the caller's tag.
+struct PixelWatch {
+  int x = -1, y = -1;
+  FragmentObserver* observer = nullptr;
+  uint64_t drawIndex = 0;
+  uint32_t drawTag = 0;
+};
+
 }  // namespace shadowref
