@@ -31,6 +31,14 @@ Framebuffer& FastPipeline::framebuffer() {
   return renderer_.framebuffer();
 }
 
+// Ends the pass first: the bands render a pass's draws at once, each band on its thread, so the
+// draws watching one pixel and those watching another would report from two threads at once and
+// out of draw order; within a pass, every watched fragment is in the one band of its pixel.
+void FastPipeline::watchPixel(int x, int y, FragmentObserver* observer) {
+  endPass();
+  renderer_.watchPixel(x, y, observer);
+}
+
 void FastPipeline::forEachIndependent(int count, const std::function<void(int)>& task) {
   renderer_.parallelFor(count, task);
 }

@@ -27,7 +27,7 @@ class FastPipeline final : public Pipeline {
 
   const RasterStats& stats() const override { return renderer_.stats(); }
   void resetStats() override { renderer_.resetStats(); }
-  void watchPixel(int x, int y, FragmentObserver* observer) override { renderer_.watchPixel(x, y, observer); }
+  void watchPixel(int x, int y, FragmentObserver* observer) override;
   void forEachIndependent(int count, const std::function<void(int)>& task) override;
   std::unique_ptr<Pipeline> forFramebuffer(Framebuffer& fb) const override;
 

@@ -61,9 +61,9 @@ void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_
     event.drawIndex = watch_->drawIndex;
     event.drawTag = watch_->drawTag;
     event.facing = t.facing;
-    if (fb_.hasStencil()) event.stencilBefore = event.stencilAfter = fb_.stencil()[at];
-    if (fb_.hasDepth()) event.storedDepth = fb_.depthCodec().decode(fb_.depthCodes()[at]);
-    if (fb_.hasColor()) event.colorBefore = event.colorAfter = fb_.color()[at];
+    if (watch_->hasStencil) event.stencilBefore = event.stencilAfter = fb_.stencil()[at];
+    if (watch_->hasDepth) event.storedDepth = fb_.depthCodec().decode(fb_.depthCodes()[at]);
+    if (watch_->hasColor) event.colorBefore = event.colorAfter = fb_.color()[at];
   }
 
   const double z = fragmentDepth(t, x, y, state_);

@@ -254,6 +254,9 @@ Renderer::PendingDraw Renderer::pendingDrawFor(const DrawCall& call) const {
   pending.shader = call.shader;
   pending.fragmentWork = call.shader ? call.shader->fragmentWork() : kPlainFragmentWork;
   pending.watch = watch_;
+  pending.watch.hasColor = fb_.hasColor();  // the buffers as the draw finds them (PixelWatch)
+  pending.watch.hasDepth = fb_.hasDepth();
+  pending.watch.hasStencil = fb_.hasStencil();
   return pending;
 }
 

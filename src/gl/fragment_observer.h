@@ -35,6 +35,10 @@ struct PixelWatch {
   FragmentObserver* observer = nullptr;
   uint64_t drawIndex = 0;
   uint32_t drawTag = 0;
+  // The buffers that existed when the draw was made: the event reports what those held before and
+  // after. A buffer that a later draw makes did not exist for this one, even where a pipeline
+  // renders the draws of a pass together.
+  bool hasColor = false, hasDepth = false, hasStencil = false;
 };
 
 }  // namespace shadowref

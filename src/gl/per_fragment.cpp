@@ -29,9 +29,9 @@ void processFragment(Framebuffer& fb, const RenderState& state, const FragmentSh
     event.drawIndex = watch->drawIndex;
     event.drawTag = watch->drawTag;
     event.facing = t.facing;
-    if (fb.hasStencil()) event.stencilBefore = event.stencilAfter = fb.stencil()[at];
-    if (fb.hasDepth()) event.storedDepth = fb.depthCodec().decode(fb.depthCodes()[at]);
-    if (fb.hasColor()) event.colorBefore = event.colorAfter = fb.color()[at];
+    if (watch->hasStencil) event.stencilBefore = event.stencilAfter = fb.stencil()[at];
+    if (watch->hasDepth) event.storedDepth = fb.depthCodec().decode(fb.depthCodes()[at]);
+    if (watch->hasColor) event.colorBefore = event.colorAfter = fb.color()[at];
   }
 
   // The fragment's depth in the buffer's format: the depth test compares codes ([GL 2.1, §4.1.6]).

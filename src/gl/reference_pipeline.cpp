@@ -19,6 +19,9 @@ void ReferencePipeline::draw(const DrawCall& call) {
   ++stats_.drawCalls;
   watch_.drawIndex = drawCount_++;
   watch_.drawTag = call.tag;
+  watch_.hasColor = fb_.hasColor();
+  watch_.hasDepth = fb_.hasDepth();
+  watch_.hasStencil = fb_.hasStencil();
   const size_t triangles = trianglesOf(call);
   stats_.trianglesIn += triangles;
   checkIndices(call);  // throws before any triangle of the draw is drawn
