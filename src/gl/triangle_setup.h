@@ -46,7 +46,9 @@ struct TriangleSetup {
   int64_t area2 = 0;       // > 0
   Facing facing = FrontFacing;
   int64_t stepX[3]{}, stepY[3]{};  // change of E_i for one pixel right / up
-  int64_t bias[3]{};       // 0 for top-left edges, -1 otherwise: E_i + bias_i >= 0 covers
+  // The top-left rule as decided here (isTopLeft, triangle_setup.cpp): 0 for a top or left edge,
+  // -1 otherwise. Consumed by coverage (coverage.h, covers): E_i + bias_i >= 0 covers.
+  int64_t bias[3]{};
   int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixels whose centres may be covered
   double depthOffset = 0.0;
   // Window depth as a plane through the UNSNAPPED vertices, as GL implementations compute it
