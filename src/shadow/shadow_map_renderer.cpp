@@ -8,7 +8,7 @@
 
 #include "gl/accumulation.h"
 #include "gl/clear.h"
-#include "exec/color_columns.h"
+#include "gl/color_columns.h"
 #include "gl/lighting.h"
 #include "shadow/draw_tag.h"
 #include "shadow/light_shadow.h"
