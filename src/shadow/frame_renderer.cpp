@@ -33,7 +33,7 @@ class PassClock {
 // No shadows: every light in one pass, with the ambient term.
 void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResult& result, Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
-  const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
+  const std::vector<Instance> instances = scene.instances();
   const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
   RenderState state;
   state.viewport = view.viewport;

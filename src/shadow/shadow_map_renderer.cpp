@@ -277,7 +277,7 @@ void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
 void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
                       Renderer& renderer) {
   const SceneView view = makeCameraView(scene);
-  const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
+  const std::vector<Instance> instances = scene.instances();
   const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
   Framebuffer& fb = renderer.framebuffer();
   const bool trapezoidal = method == ShadowMethod::Trapezoidal;

@@ -201,7 +201,7 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
                          Renderer& renderer) {
   // Volumes reach infinity: P_inf, no far clipping ([Kuhn 2016, §3.3]).
   const SceneView view = makeCameraView(scene, true);
-  const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
+  const std::vector<Instance> instances = scene.instances();
   const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
   Framebuffer& fb = renderer.framebuffer();
   int passCounter = 0;
