@@ -314,7 +314,7 @@ Renderer::PendingDraw Renderer::pendingDrawFor(const DrawCall& call) const {
   pending.region = drawRegion(*call.state, fb_);
   pending.state = *call.state;
   pending.shader = call.shader;
-  pending.fragmentWork = call.shader ? call.shader->fragmentWork() : kPlainFragmentWork;
+  pending.fragmentWork = fragmentWorkOf(call.shader);
   pending.watch = watch_;
   return pending;
 }

@@ -132,7 +132,7 @@ class Renderer {
   struct PendingDraw {
     RenderState state;
     const FragmentShader* shader = nullptr;
-    int fragmentWork = kPlainFragmentWork;  // the shader's, for the bands' estimate (RowWork)
+    int fragmentWork = kPlainFragmentWork;  // fragmentWorkOf its shader, for the bands' estimate (RowWork)
     PixelWatch watch;     // the pixel history's watch with this draw's index and tag
     Rect region;          // drawRegion of the state
     size_t first = 0, count = 0;  // its setups in pendingSetups_

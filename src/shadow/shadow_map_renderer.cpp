@@ -21,10 +21,6 @@ namespace shadowref {
 
 namespace {
 
-// What a shadow-map lookup adds to a fragment's work (FragmentShader::fragmentWork), per light:
-// its matrix, divisions and texel reads, about half a plain fragment's.
-constexpr int kLookupFragmentWork = 2;
-
 // The camera pass's shader: GL_MODULATE of the lit colour by the compare result
 // ([Hempe 2004, §5.1.2]), per light: colour = sum over lights of (ambient / n + diffuse_i +
 // specular_i) * factor_i. With one light, as in the documents, that is (ambient + light) * (1 or
@@ -40,10 +36,6 @@ class ShadowMappedShader final : public FragmentShader {
   }
 
   int varyingCount() const override { return 6; }
-  int fragmentWork() const override {  // without shadows: the ambient term alone (shadeBatch)
-    if (shadows_.empty()) return kPlainFragmentWork;
-    return lightingFragmentWork(terms_) + kLookupFragmentWork * int(shadows_.size());
-  }
 
   void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override {
     if (shadows_.empty()) {
@@ -103,7 +95,6 @@ class ShadowMappedGouraudShader final : public FragmentShader {
   explicit ShadowMappedGouraudShader(std::vector<const LightShadow*> shadows) : shadows_(std::move(shadows)) {}
 
   int varyingCount() const override { return kFirstColor + 3 * int(shadows_.size()); }
-  int fragmentWork() const override { return kPlainFragmentWork + kLookupFragmentWork * int(shadows_.size()); }
 
   // shade()'s sum in columns, one channel at a time over the batch (the loops vectorise): the
   // same operations per fragment, in the same order.
