@@ -210,7 +210,9 @@ class Renderer {
   void countByTriangles();
   void countByBands(int minY, int maxY);
   int cutIntoRuns(size_t runs);
+  std::vector<std::vector<uint8_t>>& extraStencils(size_t count, size_t pixels);
   void addExtraStencils(std::vector<std::vector<uint8_t>>& extra, size_t firstTask);
+  std::vector<std::vector<uint8_t>> extraStencils_;  // extraStencils' (counting_flush.cpp)
   // A setup of pending_[draw] that meets a band's rows (pendingSetups_[setup]).
   struct CountEntry {
     uint32_t draw, setup;
