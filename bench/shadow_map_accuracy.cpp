@@ -155,7 +155,9 @@ int run(int argc, char** argv) {
           const Scene scene = load(sc, extra);
           const std::vector<Instance> instances = scene.instances();
           RasterStats stats;
-          const auto shadow = buildLightShadow(scene, instances, makeCameraView(scene), scene.lights.at(0), trapezoidal, 0, stats);
+          Framebuffer frame(1, 1);  // the maps' pipelines are made like this one: on every core
+          const auto shadow = buildLightShadow(scene, instances, makeCameraView(scene), scene.lights.at(0), trapezoidal,
+                                               *makePipeline(PipelineKind::Fast, frame, 0), stats);
           const ShadowMapErrors e = countShadowErrors(*shadow, o.hitPoint, o.lit, mask);
           std::printf("%-10s %-9s %-9s %6d %9zu %8zu %8zu %8.3f\n", sc.name.c_str(), method, a.name.c_str(), size, e.points,
                       e.falseShadow, e.missedShadow, 100.0 * e.wrongFraction());

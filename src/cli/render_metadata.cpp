@@ -1,7 +1,7 @@
 #include "cli/render_metadata.h"
 
 #include "cli/version_info.h"
-#include "exec/thread_pool.h"
+#include "gl/pipeline.h"
 #include "shadow/shadow_method.h"
 
 namespace shadowref::cli {
@@ -14,8 +14,8 @@ OutputMetadata renderMetadata(const RenderArgs& args, const Scene& scene, const 
   m.scene = args.scene.scene.empty() ? scene.sourceFile : args.scene.scene;
   if (!args.scene.scene.empty()) m.sceneSha1 = sha1OfFile(args.scene.scene);
   m.overrides = args.scene.overrides;
-  m.threads = options.threads > 0 ? options.threads : defaultThreadCount();
-  m.pipeline = "fast";
+  m.threads = pipelineThreads(options.pipeline, options.threads);
+  m.pipeline = name(options.pipeline);
   return m;
 }
 

@@ -39,18 +39,17 @@ constexpr int64_t kPixelsPerSumPart = 1 << 15;
 // countByBands: a claim takes a kClaimShare-th of a band's share of the setups left.
 constexpr int kClaimShare = 8;
 
-// The stencils of the threads but the first, kept zero between flushes (the sum zeroes what it
-// read), and kept from flush to flush and frame to frame on the calling thread: new ones would be
-// zeroed and paged in each time.
-std::vector<std::vector<uint8_t>>& extraStencils(size_t count, size_t pixels) {
-  thread_local std::vector<std::vector<uint8_t>> stencils;
-  if (stencils.size() < count) stencils.resize(count);
-  for (size_t k = 0; k < count; ++k)
-    if (stencils[k].size() != pixels) stencils[k].assign(pixels, 0);
-  return stencils;
-}
-
 }  // namespace
+
+// The stencils of the threads but the first, kept zero between flushes (the sum zeroes what it
+// read), and kept from flush to flush by the renderer: new ones would be zeroed and paged in each
+// time.
+std::vector<std::vector<uint8_t>>& Renderer::extraStencils(size_t count, size_t pixels) {
+  if (extraStencils_.size() < count) extraStencils_.resize(count);
+  for (size_t k = 0; k < count; ++k)
+    if (extraStencils_[k].size() != pixels) extraStencils_[k].assign(pixels, 0);
+  return extraStencils_;
+}
 
 bool Renderer::countsInAnyOrder() const {
   if (referencePath_ || !fb_.hasStencil()) return false;

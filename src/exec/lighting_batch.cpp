@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "exec/color_columns.h"
+#include "gl/color_columns.h"
 #include "gl/lighting.h"
 #include "gl/lighting_pow.h"
 

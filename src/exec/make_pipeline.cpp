@@ -1,6 +1,7 @@
 // makePipeline (gl/pipeline.h): the one place that knows both pipelines' types, so that the
 // algorithms and the command include neither.
 #include "exec/fast_pipeline.h"
+#include "exec/thread_pool.h"
 #include "gl/pipeline.h"
 #include "gl/reference_pipeline.h"
 
@@ -16,6 +17,11 @@ std::unique_ptr<Pipeline> makePipeline(PipelineKind kind, Framebuffer& fb, int t
       return std::make_unique<ReferencePipeline>(fb);
   }
   return nullptr;
+}
+
+int pipelineThreads(PipelineKind kind, int threads) {
+  if (kind == PipelineKind::Reference) return 1;
+  return threads > 0 ? threads : defaultThreadCount();
 }
 
 }  // namespace shadowref

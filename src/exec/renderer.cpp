@@ -16,13 +16,12 @@ namespace shadowref {
 
 namespace {
 std::atomic<bool> referencePathForNewRenderers{false};
-std::atomic<uint64_t> renderersMade{0};
 }  // namespace
 
 void Renderer::useReferencePath(bool on) { referencePathForNewRenderers = on; }
 
 Renderer::Renderer(Framebuffer& framebuffer, int threads)
-    : fb_(framebuffer), serial_(++renderersMade), referencePath_(referencePathForNewRenderers) {
+    : fb_(framebuffer), referencePath_(referencePathForNewRenderers) {
   setThreads(threads);
   rowWork_.reset(fb_.height());
 }
@@ -185,7 +184,7 @@ void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes, Ve
   corners.base = call.vertices.data();
 }
 
-void Renderer::draw(const DrawCall& call, SetupReuse* reuseRequest) {
+void Renderer::draw(const DrawCall& call) {
   const RenderState& state = *call.state;
   const bool anyColor = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
   if (call.shader && anyColor) fb_.ensureColor();
@@ -201,9 +200,10 @@ void Renderer::draw(const DrawCall& call, SetupReuse* reuseRequest) {
 
   const size_t triangleCount = trianglesOf(call);
   stats_.trianglesIn += triangleCount;
-  SetupReuse* const reuse = claimReuse(reuseRequest);
+  SetupReuse* const reuse = claimReuse(call);
   const bool queue = pool_ && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1;
-  if (reuse && canReuse(*reuse, call)) {  // its indices were checked when its setups were kept
+  if (reuse && canReuse(*reuse, call)) {  // its indices are those checked when its setups were kept
+    ++drawsReusingSetups_;
     if (queue) {
       queueAssembly(call, planes, varyingCount);
       queued_.back().kept = reuse;
@@ -240,7 +240,9 @@ void Renderer::draw(const DrawCall& call, SetupReuse* reuseRequest) {
     clipped += assembly_[c].stats.trianglesClipped;
   }
   const bool drawn = collectSetups(std::span(assembly_.data(), chunks), pending);
-  if (reuse && clipped == 0) keepForReuse(call, *reuse, pending.first, pendingSetups_.size() - pending.first, culled);
+  if (reuse && clipped == 0)
+    keepForReuse(call, *reuse, pending.first, pendingSetups_.size() - pending.first, culled,
+                 pendingBlocks_.size() - chunks, pendingBlocks_.size());
   if (drawn) pending_.push_back(pending);
   if (deferDepth_ == 0) flush();
 }
@@ -252,7 +254,7 @@ Renderer::PendingDraw Renderer::pendingDrawFor(const DrawCall& call) const {
   pending.region = drawRegion(*call.state, fb_);
   pending.state = *call.state;
   pending.shader = call.shader;
-  pending.fragmentWork = call.shader ? call.shader->fragmentWork() : kPlainFragmentWork;
+  pending.fragmentWork = fragmentWorkOf(call.shader);
   pending.watch = watch_;
   pending.watch.hasColor = fb_.hasColor();  // the buffers as the draw finds them (PixelWatch)
   pending.watch.hasDepth = fb_.hasDepth();
@@ -316,17 +318,17 @@ bool Renderer::settleRows(PendingDraw& pending, size_t count, int minY, int maxY
   return pending.minY <= pending.maxY;
 }
 
-SetupReuse* Renderer::claimReuse(SetupReuse* r) {
-  if (!r || (r->claimRenderer_ == serial_ && r->claimFlush_ == flushes_)) return nullptr;
-  r->claimRenderer_ = serial_;
-  r->claimFlush_ = flushes_;
-  return r;
+SetupReuse* Renderer::claimReuse(const DrawCall& call) {
+  if (trianglesOf(call) == 0) return nullptr;
+  SetupReuse& r = reuse_[{call.vertices.data(), call.vertices.size(), call.indices.data(), call.indices.size()}];
+  if (r.claimFlush_ == flushes_) return nullptr;
+  r.claimFlush_ = flushes_;
+  return &r;
 }
 
+// The contents last: the state is one comparison, the contents a read of every position.
 bool Renderer::canReuse(const SetupReuse& r, const DrawCall& call) const {
-  return r.kept_ && r.renderer_ == serial_ && r.vertices_ == call.vertices.data() &&
-         r.vertexCount_ == call.vertices.size() && r.indices_ == call.indices.data() &&
-         r.indexCount_ == call.indices.size() && setsUpAlike(r.state_, *call.state);
+  return r.kept_ && setsUpAlike(r.state_, *call.state) && r.sameContents(call.vertices, call.indices);
 }
 
 // The kept setups as a pending draw of this call's state: no assembly, and their rows' work is
@@ -342,20 +344,18 @@ void Renderer::drawKeptSetups(const DrawCall& call, const SetupReuse& r) {
   if (settleRows(pending, r.setups_.size(), r.minY_, r.maxY_)) pending_.push_back(pending);
 }
 
-// Keeps the call's setups — pendingSetups_[first, first + count), in blocks already in
-// pendingBlocks_ — in the draw's SetupReuse.
-void Renderer::keepForReuse(const DrawCall& call, SetupReuse& r, size_t first, size_t count, uint64_t culled) {
+// Keeps the call's setups — pendingSetups_[first, first + count), in the blocks
+// pendingBlocks_[firstBlock, endBlock) — in the entry of its arrays, with a copy of the positions
+// and indices they were made from.
+void Renderer::keepForReuse(const DrawCall& call, SetupReuse& r, size_t first, size_t count, uint64_t culled,
+                            size_t firstBlock, size_t endBlock) {
   r.kept_ = true;
-  r.renderer_ = serial_;
-  r.vertices_ = call.vertices.data();
-  r.vertexCount_ = call.vertices.size();
-  r.indices_ = call.indices.data();
-  r.indexCount_ = call.indices.size();
+  r.keepContents(call.vertices, call.indices);
   r.state_ = *call.state;
   const auto at = std::ptrdiff_t(first), end = std::ptrdiff_t(first + count);
   r.setups_.assign(pendingSetups_.begin() + at, pendingSetups_.begin() + end);
   r.bounds_.assign(pendingBounds_.begin() + at, pendingBounds_.begin() + end);
-  r.blocks_.assign(pendingBlocks_.begin(), pendingBlocks_.end());
+  r.blocks_.assign(pendingBlocks_.begin() + std::ptrdiff_t(firstBlock), pendingBlocks_.begin() + std::ptrdiff_t(endBlock));
   r.culled_ = culled;
   const SpannedRows rows = rowsSpanned(std::span<const SetupBounds>(r.bounds_));
   r.minY_ = rows.minY;
@@ -527,7 +527,7 @@ void Renderer::assembleQueued() {
   }
   stats_.trianglesRasterized += end - groupFirst[0];
   for (size_t g = 0; g < groups; ++g) keepBlock(queuedWs_[g]);
-  keepQueuedForReuse();
+  keepQueuedForReuse(groups);
   for (const QueuedAssembly& q : queued_) {
     PendingDraw& pending = pending_[q.pending];
     pending.workCounted = true;
@@ -541,24 +541,33 @@ void Renderer::assembleQueued() {
 }
 
 // The assembled queued draws' setups kept in their SetupReuse (those that clipped no triangle),
-// each draw's copied on a thread of its own.
-void Renderer::keepQueuedForReuse() {
+// each draw's copied on a thread of its own. The groups' blocks are the last `groups` of
+// pendingBlocks_, in order.
+void Renderer::keepQueuedForReuse(size_t groups) {
   queuedKeep_.clear();
   for (size_t d = 0; d < queued_.size(); ++d)
-    if (queued_[d].reuse && !queued_[d].kept) queuedKeep_.push_back({d, 0, 0});  // claimed in draw()
+    if (queued_[d].reuse && !queued_[d].kept) queuedKeep_.push_back({.draw = d});  // claimed in draw()
   if (queuedKeep_.empty()) return;
-  for (const QueuedPiece& piece : queuedPieces_) {
-    auto at = std::lower_bound(queuedKeep_.begin(), queuedKeep_.end(), piece.draw,
-                               [](const KeptDraw& k, size_t draw) { return k.draw < draw; });
-    if (at == queuedKeep_.end() || at->draw != piece.draw) continue;
-    at->culled += piece.culled;
-    at->clipped += piece.clipped;
-  }
+  for (size_t g = 0; g < groups; ++g)
+    for (size_t p = queuedGroups_[g]; p < queuedGroups_[g + 1]; ++p) {
+      const QueuedPiece& piece = queuedPieces_[p];
+      auto at = std::lower_bound(queuedKeep_.begin(), queuedKeep_.end(), piece.draw,
+                                 [](const KeptDraw& k, size_t draw) { return k.draw < draw; });
+      if (at == queuedKeep_.end() || at->draw != piece.draw) continue;
+      at->culled += piece.culled;
+      at->clipped += piece.clipped;
+      at->firstGroup = std::min(at->firstGroup, g);
+      at->endGroup = g + 1;
+    }
+  const size_t firstBlock = pendingBlocks_.size() - groups;
   pool_->run(int(queuedKeep_.size()), [&](int i) {
     const KeptDraw& k = queuedKeep_[size_t(i)];
     const QueuedAssembly& q = queued_[k.draw];
     const PendingDraw& pending = pending_[q.pending];
-    if (k.clipped == 0) keepForReuse(q.call, *q.reuse, pending.first, pending.count, k.culled);
+    if (k.clipped != 0) return;
+    const size_t beginGroup = k.firstGroup == SIZE_MAX ? k.endGroup : k.firstGroup;  // no pieces: no blocks
+    keepForReuse(q.call, *q.reuse, pending.first, pending.count, k.culled, firstBlock + beginGroup,
+                 firstBlock + k.endGroup);
   });
 }
 

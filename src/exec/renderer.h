@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "gl/clear.h"
@@ -43,9 +44,10 @@ class Renderer {
 
   // Allocates the buffers the state needs (colour when a shader writes, depth when the depth
   // test is on, stencil when the stencil test is on), assembles and sets up the triangles, then
-  // rasterizes them — at once, or with a DeferredDraws alive, when the last one ends.
-  // `reuse`: set-up triangles kept for a later draw of the same vertices and indices (SetupReuse).
-  void draw(const DrawCall& call, SetupReuse* reuse = nullptr);
+  // rasterizes them — at once, or with a DeferredDraws alive, when the last one ends. A draw of
+  // arrays drawn before, unchanged, in a state that sets them up alike takes the setups kept then
+  // instead of assembling again (SetupReuse).
+  void draw(const DrawCall& call);
 
   // glClear (clear.h) as the start of what is drawn next: the buffers are made at once, their rows
   // filled at the next flush (the next draw without a DeferredDraws alive, or the end of the last
@@ -81,6 +83,8 @@ class Renderer {
   // shaded passes' bands.
   uint64_t flushesCountedByTriangles() const { return trianglesCountedFlushes_; }
   uint64_t flushesCountedByBands() const { return bandsCountedFlushes_; }
+  // How many draws took the setups kept from an earlier draw of their arrays (SetupReuse).
+  uint64_t drawsReusingSetups() const { return drawsReusingSetups_; }
 
   // Reports every fragment at pixel (x, y) to the observer (nullptr to stop).
   void watchPixel(int x, int y, FragmentObserver* observer) {
@@ -133,7 +137,7 @@ class Renderer {
   struct PendingDraw {
     RenderState state;
     const FragmentShader* shader = nullptr;
-    int fragmentWork = kPlainFragmentWork;  // the shader's, for the bands' estimate (RowWork)
+    int fragmentWork = kPlainFragmentWork;  // fragmentWorkOf its shader, for the bands' estimate (RowWork)
     PixelWatch watch;     // the pixel history's watch with this draw's index and tag
     Rect region;          // drawRegion of the state
     size_t first = 0, count = 0;  // its setups in pendingSetups_
@@ -168,14 +172,16 @@ class Renderer {
     int minY = 0, maxY = -1;  // after assembly: the rows its setups span
     uint64_t culled = 0, clipped = 0;  // after assembly: its triangles culled and clipped
   };
-  // SetupReuse: the draw's reuse (nullptr without one, or when another draw of this
-  // flush has it); whether the call may take the setups kept in it; takes them (a pending draw
-  // without assembly); keeps a pending draw's setups in it.
-  SetupReuse* claimReuse(SetupReuse* reuse);
+  // SetupReuse: the entry of the call's arrays (made when they are new; nullptr for a draw of no
+  // triangles, or when another draw of this flush has it); whether the call may take the setups
+  // kept in it; takes them (a pending draw without assembly); keeps a pending draw's setups in it
+  // (pendingSetups_[first, first + count), in pendingBlocks_[firstBlock, endBlock)).
+  SetupReuse* claimReuse(const DrawCall& call);
   bool canReuse(const SetupReuse& reuse, const DrawCall& call) const;
   void drawKeptSetups(const DrawCall& call, const SetupReuse& kept);
-  void keepForReuse(const DrawCall& call, SetupReuse& reuse, size_t first, size_t count, uint64_t culled);
-  void keepQueuedForReuse();
+  void keepForReuse(const DrawCall& call, SetupReuse& reuse, size_t first, size_t count, uint64_t culled,
+                    size_t firstBlock, size_t endBlock);
+  void keepQueuedForReuse(size_t groups);
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void assembleQueued();
   void rasterizeBand(int y0, int y1, RasterStats& stats) const;
@@ -205,7 +211,9 @@ class Renderer {
   void countByTriangles();
   void countByBands(int minY, int maxY);
   int cutIntoRuns(size_t runs);
+  std::vector<std::vector<uint8_t>>& extraStencils(size_t count, size_t pixels);
   void addExtraStencils(std::vector<std::vector<uint8_t>>& extra, size_t firstTask);
+  std::vector<std::vector<uint8_t>> extraStencils_;  // extraStencils' (counting_flush.cpp)
   // A setup of pending_[draw] that meets a band's rows (pendingSetups_[setup]).
   struct CountEntry {
     uint32_t draw, setup;
@@ -237,8 +245,11 @@ class Renderer {
   uint64_t bandsCountedFlushes_ = 0;
 
   Framebuffer& fb_;
-  const uint64_t serial_;  // this renderer among all made in the process (SetupReuse)
-  uint64_t flushes_ = 0;   // flushes done (SetupReuse: one draw per flush has one)
+  uint64_t flushes_ = 0;   // flushes done (SetupReuse: one draw per flush has an entry)
+  // The setups kept for each vertex and index arrays drawn, while this renderer lives (a frame,
+  // or a shadow map): what draws of the same arrays in later passes take (SetupReuse).
+  std::unordered_map<SetupReuseKey, SetupReuse, SetupReuseKeyHash> reuse_;
+  uint64_t drawsReusingSetups_ = 0;
   ThreadPool* pool_ = nullptr;  // the calling thread's (threadPoolForThisThread); nullptr: one thread
   // A band's counters, on cache lines of their own: the band's thread adds to them per triangle
   // (per chunk of fragments in a shaded pass), and a line shared with the next band's counters
@@ -276,10 +287,12 @@ class Renderer {
   std::vector<AssemblyWorkspace> queuedWs_;
   std::vector<size_t> queuedKept_;  // the queued draws that take kept setups
   std::vector<size_t> queuedKeptFirst_;  // assembleQueued's run r of them: [queuedKeptFirst_[r], queuedKeptFirst_[r + 1])
-  // A queued draw whose setups are to be kept in its SetupReuse, with its pieces' counts.
+  // A queued draw whose setups are to be kept in its SetupReuse, with its pieces' counts and the
+  // groups they were assembled in (their blocks).
   struct KeptDraw {
     size_t draw = 0;
     uint64_t culled = 0, clipped = 0;
+    size_t firstGroup = SIZE_MAX, endGroup = 0;
   };
   std::vector<KeptDraw> queuedKeep_;
   // Each queued group's setups counted into the rows' work on the group's thread (27k pumpkin

@@ -4,6 +4,12 @@
 
 namespace shadowref {
 
+int fragmentWorkOf(const FragmentShader* shader) {
+  constexpr int kInterpolatedColor = 4;  // RGBA
+  if (!shader || shader->constantColor() || shader->varyingCount() <= kInterpolatedColor) return kPlainFragmentWork;
+  return 3 * kPlainFragmentWork;
+}
+
 void RowWork::addClear(const Rect& region) {
   if (region.width <= 0 || region.height <= 0) return;
   diff_[size_t(region.y)] += (region.width / 4 + kRowCost) * kUnit;

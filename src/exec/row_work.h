@@ -13,6 +13,18 @@
 
 namespace shadowref {
 
+// What a fragment that passes its tests costs, in quarters of a plain one's (interpolating a few
+// varyings or none, a colour written): the unit of the rows' work per fragment.
+inline constexpr int kPlainFragmentWork = 4;
+
+// What shading a fragment of `shader` costs (nullptr: no colour written), estimated from what the
+// shader interface tells of it: a constant colour, or a few varyings (a colour interpolated), a
+// plain fragment; more (a position and a normal: lighting, shadow-map lookups per fragment) three.
+// The estimate compares the draws of one flush — a lit surface costs a fragment markedly more than
+// an interpolated colour, and weighed alike the band of its rows would get more than its share.
+// Rough by design: any split of rows gives the same bytes.
+int fragmentWorkOf(const FragmentShader* shader);
+
 class RowWork {
  public:
   // Forgets every triangle and clear, for a framebuffer of `rows` rows: zeroes what was written
@@ -31,7 +43,7 @@ class RowWork {
   }
 
   // A triangle drawn inside `region`: on each of its rows the pixels it covers there, each of
-  // fragmentWork quarters of a plain pixel (its draw's shader's FragmentShader::fragmentWork), and
+  // fragmentWork quarters of a plain pixel (fragmentWorkOf its draw's shader), and
   // a row's fixed cost, once its fixed cost. Difference lists (each triangle writes a few entries,
   // not one per row), so that a group of triangles on one thread can be counted on its own and
   // added to the others (add). With byShape, a triangle of kShapedRows rows or more weighs each row

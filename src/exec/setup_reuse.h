@@ -1,11 +1,16 @@
-// Set-up triangles kept from one pass of a frame for the next (Renderer, DrawCall::reuse): a
-// scene drawn once for the ambient pass and once for each light need not be set up each time.
+// Set-up triangles kept from one pass of a frame for the next (Renderer): a scene drawn once for
+// the ambient pass and once for each light need not be set up each time. The renderer finds the
+// draws that repeat by itself; the callers only draw (the draw contract of gl/pipeline.h).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <span>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "gl/render_state.h"
 #include "gl/triangle_setup.h"
@@ -13,39 +18,51 @@
 
 namespace shadowref {
 
-// A draw's set-up triangles, kept for a later draw of the same triangles in another pass: a
-// scene's instances are drawn once for the ambient pass and once for each light, with the same
-// vertices, indices and everything that sets a triangle up — only the depth, stencil and blend
-// tests and the shader change. The first draw given one of these assembles as usual and keeps its
-// setups in it; a later draw given it takes them instead of assembling again when it draws the same
-// vertex and index arrays (the same objects, whose positions and indices the caller keeps
-// unchanged meanwhile; the varyings may change, as a Gouraud pass's colours do: they are read
-// when fragments are shaded) in a state that sets triangles up alike (setsUpAlike), on the same
-// renderer. The same setups, so the same bytes. A draw that clipped a triangle is not kept: the
-// vertices clipping makes (their varyings interpolated then) last only until its flush. The
-// caller owns it; it holds the setups (and the blocks they are in) until it is destroyed or kept
-// anew. One draw per flush has it (keeps or takes setups).
+// A draw's vertex and index arrays as the renderer saw them: where they were and how long.
+struct SetupReuseKey {
+  const ClipVertex* vertices = nullptr;
+  size_t vertexCount = 0;
+  const uint32_t* indices = nullptr;
+  size_t indexCount = 0;
+  bool operator==(const SetupReuseKey&) const = default;
+};
+
+struct SetupReuseKeyHash {
+  size_t operator()(const SetupReuseKey& k) const {
+    size_t h = std::hash<const void*>()(k.vertices);
+    for (const size_t part : {k.vertexCount, std::hash<const void*>()(k.indices), k.indexCount})
+      h = h * 0x9e3779b97f4a7c15ull + part;
+    return h;
+  }
+};
+
+// The setups of one draw, kept by the renderer for a later draw of the same arrays: a scene's
+// instances are drawn once for the ambient pass and once for each light, with the same vertices,
+// indices and everything that sets a triangle up — only the depth, stencil and blend tests and
+// the shader change. A later draw takes them instead of assembling again when
+//  - its arrays are the same (address and length: a setup points at its vertices, whose varyings
+//    the fragments read when they are shaded — a Gouraud pass's colours change from pass to pass),
+//  - the clip positions of its vertices and its indices are byte for byte those the setups were
+//    made from (a copy is kept: the draw contract lets the caller change its arrays between
+//    passes, and a position compared by value would take -0.0 for 0.0),
+//  - its state sets triangles up alike (setsUpAlike).
+// Setups are a function of these alone, so the same setups, the same bytes. A draw that clipped a
+// triangle keeps nothing: the vertices clipping makes (their varyings interpolated then) last only
+// until its flush. One draw per flush keeps or takes an entry.
 class SetupReuse {
  public:
   bool holdsSetups() const { return kept_; }
-  // Holds no setups any more, as if new, but keeps its lists' buffers: for a caller that keeps it
-  // from frame to frame, drawing arrays at the same addresses (a renderer takes only setups it kept
-  // itself, but one renderer may draw two frames).
-  void forget() {
-    kept_ = false;
-    blocks_.clear();
-  }
 
  private:
   friend class Renderer;
+  // Whether the call's positions and indices are byte for byte the ones kept.
+  bool sameContents(std::span<const ClipVertex> vertices, std::span<const uint32_t> indices) const;
+  void keepContents(std::span<const ClipVertex> vertices, std::span<const uint32_t> indices);
+
   bool kept_ = false;
-  uint64_t renderer_ = 0;  // the serial number of the Renderer that kept the setups
-  // The draw that has it in the current flush of a renderer (one draw per flush keeps or takes).
-  uint64_t claimRenderer_ = 0, claimFlush_ = 0;
-  const ClipVertex* vertices_ = nullptr;
-  size_t vertexCount_ = 0;
-  const uint32_t* indices_ = nullptr;
-  size_t indexCount_ = 0;
+  uint64_t claimFlush_ = UINT64_MAX;  // the flush in which a draw has it (one draw per flush keeps or takes)
+  std::vector<glm::dvec4> positions_;  // the clip positions the setups were made from
+  std::vector<uint32_t> indices_;      // and the indices
   RenderState state_;
   std::vector<const TriangleSetup*> setups_;
   std::vector<SetupBounds> bounds_;

@@ -20,10 +20,6 @@ struct FragmentInput {
 // Fragments of one triangle, shaded together: column by column (structure of arrays), so a
 // shader can run its arithmetic over all of them in vector registers.
 inline constexpr int kMaxBatch = 64;
-
-// What a fragment that passes its tests costs, in quarters of a plain one's (interpolating a few
-// varyings or none, a colour written): the unit of FragmentShader::fragmentWork.
-inline constexpr int kPlainFragmentWork = 4;
 struct FragmentBatch {
   int count = 0;
   Facing facing = FrontFacing;
@@ -45,12 +41,6 @@ class FragmentShader {
   // shade() for every fragment of the batch; a shader overrides it to work on all at once. It
   // must give the bits shade() gives.
   virtual void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const;
-  // What shading a fragment costs, in quarters of a plain fragment's (kPlainFragmentWork). Read only
-  // by the bands' estimate of each row's work (row_work.h), which compares the draws of one flush:
-  // a specular surface costs a lit fragment markedly more than a diffuse one, and weighed alike the
-  // band of its rows would get more than its share. Rough by design — any
-  // split gives the same bytes.
-  virtual int fragmentWork() const { return kPlainFragmentWork; }
 };
 
 // Outputs the first four varyings as RGBA: flat or Gouraud colour, and the conformance tests.

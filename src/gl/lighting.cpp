@@ -77,16 +77,9 @@ glm::dvec3 shadePoint(const LightingSetup& setup, const glm::dvec3& p, const glm
   return c;
 }
 
-int lightingFragmentWork(const std::vector<LightTerms>& terms) {
-  int work = kPlainFragmentWork;
-  for (const LightTerms& t : terms) work += kPlainFragmentWork + (t.specular ? 5 : 0) + (t.spot ? 2 : 0);
-  return work;
-}
-
 PerPixelLightingShader::PerPixelLightingShader(const LightingSetup& setup)
     : base_(setup.includeAmbient ? ambientTerm(setup.material, setup.globalAmbient) : glm::dvec3(0.0)), eye_(setup.eye) {
   for (const PhongLight& light : setup.lights) terms_.push_back(lightTerms(light, setup.material));
-  work_ = lightingFragmentWork(terms_);
 }
 
 glm::dvec3 fragmentNormal(const FragmentInput& in) {

@@ -56,10 +56,6 @@ struct LightTerms {
 };
 
 LightTerms lightTerms(const PhongLight& light, const PhongMaterial& m);
-// What per-pixel lighting by these terms costs a fragment (FragmentShader::fragmentWork): a plain
-// fragment's, plus for each light its direction, attenuation and diffuse term (one plain
-// fragment's again), its specular power (about as much again) and its spot cone.
-int lightingFragmentWork(const std::vector<LightTerms>& terms);
 glm::dvec3 lightContribution(const LightTerms& light, const glm::dvec3& p, const glm::dvec3& n, const glm::dvec3& eye);
 // lightContribution for every fragment of a batch of per-pixel shading (varyings in the
 // kVaryingPosition/kVaryingNormal layout, normal as fragmentNormal makes it), in columns: fragment
@@ -93,14 +89,12 @@ class PerPixelLightingShader final : public FragmentShader {
   int varyingCount() const override { return 6; }
   glm::dvec4 shade(const FragmentInput& in) const override;
   void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override;
-  int fragmentWork() const override { return work_; }
 
  private:
   glm::dvec3 litColor(const FragmentInput& in) const;
   glm::dvec3 base_;  // the ambient term, or 0
   std::vector<LightTerms> terms_;
   glm::dvec3 eye_;
-  int work_;  // lightingFragmentWork(terms_)
 };
 
 // The interpolated normal of a per-pixel shader, renormalised, flipped for a back face.

@@ -78,5 +78,7 @@ class Pipeline {
 // The pipeline of that kind drawing into `fb` (threads: the fast executor's, 0 for every core;
 // the reference ignores it).
 std::unique_ptr<Pipeline> makePipeline(PipelineKind kind, Framebuffer& fb, int threads = 1);
+// The threads() of a pipeline that makePipeline(kind, fb, threads) makes, without making one.
+int pipelineThreads(PipelineKind kind, int threads);
 
 }  // namespace shadowref

@@ -18,12 +18,11 @@ Aabb transformBounds(const Aabb& box, const glm::dmat4& m) {
 }
 
 // [Kuhn 2016, §4.1.1]: the scene graph, flattened depth-first; a child's world matrix is parent *
-// local. parentPath nullptr: no paths (Scene::Paths::Omitted).
-void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, const std::string* parentPath,
+// local.
+void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, const std::string& parentPath,
              std::vector<Instance>& out) {
   const glm::dmat4 world = parent * node.local;
-  std::string path;
-  if (parentPath) path = parentPath->empty() ? node.name : *parentPath + "/" + node.name;
+  const std::string path = parentPath.empty() ? node.name : parentPath + "/" + node.name;
   if (node.mesh >= 0 && node.mesh < static_cast<int>(scene.meshes.size())) {
     Instance inst;
     inst.path = path;
@@ -43,7 +42,7 @@ void flatten(const Scene& scene, const Node& node, const glm::dmat4& parent, con
     inst.mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
     out.push_back(std::move(inst));
   }
-  for (const Node& child : node.children) flatten(scene, child, world, parentPath ? &path : nullptr, out);
+  for (const Node& child : node.children) flatten(scene, child, world, path, out);
 }
 
 }  // namespace
@@ -58,10 +57,10 @@ Aabb worldBounds(const std::vector<Instance>& instances) {
   return box;
 }
 
-std::vector<Instance> Scene::instances(Paths paths) const {
+std::vector<Instance> Scene::instances() const {
   std::vector<Instance> out;
   const std::string rootPath;
-  for (const Node& root : roots) flatten(*this, root, glm::dmat4(1.0), paths == Paths::Built ? &rootPath : nullptr, out);
+  for (const Node& root : roots) flatten(*this, root, glm::dmat4(1.0), rootPath, out);
   return out;
 }
 

@@ -104,7 +104,7 @@ struct Node {
 
 // A mesh placed in the world: the flattened scene graph.
 struct Instance {
-  std::string path;       // node names from the root, "room/table/leg0" (empty: Paths::Omitted)
+  std::string path;       // node names from the root, "room/table/leg0"
   const Mesh* mesh = nullptr;
   const Mesh* shadowMesh = nullptr;  // mesh or its proxy; nullptr when it casts no shadow
   glm::dmat4 world{1.0};
@@ -127,11 +127,8 @@ struct Scene {
   std::vector<Node> roots;
   ShadowSettings shadow;
 
-  // The mesh nodes flattened, depth-first, children after their parent. Their paths are for
-  // people (the pixel history names the object a draw came from); a frame draws without them, and
-  // the city's 200 instances' strings were built on the calling thread every frame.
-  enum class Paths { Built, Omitted };
-  std::vector<Instance> instances(Paths paths = Paths::Built) const;
+  // The mesh nodes flattened, depth-first, children after their parent.
+  std::vector<Instance> instances() const;
 };
 
 // The world bounds of every instance together (instances without bounds add nothing).

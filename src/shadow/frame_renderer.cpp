@@ -1,10 +1,11 @@
 #include "shadow/frame_renderer.h"
 
 #include <chrono>
+#include <memory>
 #include <stdexcept>
 
 #include "gl/clear.h"
-#include "exec/renderer.h"
+#include "gl/pipeline.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
 #include "shadow/shadow_method.h"
@@ -31,10 +32,10 @@ class PassClock {
 };
 
 // No shadows: every light in one pass, with the ambient term.
-void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResult& result, Renderer& renderer) {
+void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResult& result, Pipeline& pipeline) {
   const SceneView view = makeCameraView(scene);
-  const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
-  const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
+  const std::vector<Instance> instances = scene.instances();
+  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &pipeline);
   RenderState state;
   state.viewport = view.viewport;
   state.clipFar = !view.infinite;
@@ -43,11 +44,11 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
   state.cull = CullMode::Back;
   PassClock clock(result);
   clock.run("lit", [&] {
-    // The clear is filled band by band with the lit draws (Renderer::clear): one pass, one time.
-    renderer.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
-    drawLit(renderer, state, scene, view, prepared, scene.lights, true);
+    // The clear and the lit draws are one pass (drawLit ends it).
+    pipeline.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
+    drawLit(pipeline, state, scene, view, prepared, scene.lights, true);
   });
-  if (options.onPass) options.onPass("01-lit", renderer.framebuffer());
+  if (options.onPass) options.onPass("01-lit", pipeline.framebuffer());
 }
 
 }  // namespace
@@ -60,19 +61,22 @@ std::string numberedPass(int& counter, const std::string& what) {
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
   const ShadowMethod method = options.method.value_or(scene.shadow.method);
   FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}};
-  Renderer renderer(result.framebuffer, options.threads);
-  if (options.observer) renderer.watchPixel(options.watchX, options.watchY, options.observer);
+  const std::unique_ptr<Pipeline> pipeline = makePipeline(options.pipeline, result.framebuffer, options.threads);
+  if (!pipeline)
+    throw std::runtime_error(std::string("the ") + name(options.pipeline) + " pipeline is not available in this build");
+  if (options.observer) pipeline->watchPixel(options.watchX, options.watchY, options.observer);
   switch (method) {
-    case ShadowMethod::None: renderUnshadowed(scene, options, result, renderer); break;
+    case ShadowMethod::None: renderUnshadowed(scene, options, result, *pipeline); break;
     case ShadowMethod::ZPass:
     case ShadowMethod::ZFail:
-    case ShadowMethod::Auto: renderShadowVolumes(scene, method, options, result, renderer); break;
+    case ShadowMethod::Auto: renderShadowVolumes(scene, method, options, result, *pipeline); break;
     case ShadowMethod::ShadowMap:
-    case ShadowMethod::Trapezoidal: renderShadowMaps(scene, method, options, result, renderer); break;
+    case ShadowMethod::Trapezoidal: renderShadowMaps(scene, method, options, result, *pipeline); break;
     default:
       throw std::runtime_error(std::string("shadow method '") + name(method) + "' is not available in this build");
   }
-  result.stats += renderer.stats();
+  pipeline->endPass();  // before the result leaves: the framebuffer is complete
+  result.stats += pipeline->stats();
   return result;
 }
 

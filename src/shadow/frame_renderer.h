@@ -10,6 +10,7 @@
 #include "gl/depth_compare_sampler.h"
 #include "gl/fragment_observer.h"
 #include "gl/framebuffer.h"
+#include "gl/pipeline.h"
 #include "gl/raster_stats.h"
 #include "scene/scene.h"
 
@@ -24,6 +25,8 @@ enum class VolumeViewMode : uint8_t {
 
 struct FrameOptions {
   std::optional<ShadowMethod> method;  // overrides the scene's shadow.method
+  // The pipeline the passes draw through (gl/pipeline.h); both give the same bytes.
+  PipelineKind pipeline = PipelineKind::Fast;
   // Rasterizer threads (0: all cores). Every buffer comes out byte-identical for any count.
   int threads = 1;
   // Pixel history: every fragment at (x, y) is reported to the observer.
@@ -61,7 +64,7 @@ struct FrameResult {
 // the --dump passes files sort as the passes ran.
 std::string numberedPass(int& counter, const std::string& what);
 
-// Throws std::runtime_error for a method this build cannot render.
+// Throws std::runtime_error for a method or pipeline this build cannot render with.
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options = {});
 
 }  // namespace shadowref

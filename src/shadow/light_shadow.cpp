@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "gl/clear.h"
-#include "exec/renderer.h"
 #include "shadow/draw_tag.h"
 #include "shadow/focus_body.h"
 #include "shadow/focused_trapezoid.h"
@@ -127,11 +126,11 @@ void LightShadow::factors(const double* x, const double* y, const double* z, int
 }
 
 DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& instances, const Light& light,
-                            const glm::dmat4& view, const glm::dmat4& projection, int threads, RasterStats& stats,
-                            double clipNear, bool depthClamp) {
+                            const glm::dmat4& view, const glm::dmat4& projection, const Pipeline& frame,
+                            RasterStats& stats, double clipNear, bool depthClamp) {
   const int size = scene.shadow.mapSize;
   Framebuffer fb(size, size, scene.depthFormat);
-  Renderer renderer(fb, threads);
+  const std::unique_ptr<Pipeline> pipeline = frame.forFramebuffer(fb);
   RenderState state;
   state.viewport = Viewport{0, 0, size, size, 0.0, 1.0};
   state.depthTest = true;
@@ -144,60 +143,48 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   // A focused depth range (focusedDepthWarp) puts casters between the light and the focus body
   // before the near plane: clamped to depth 0 they still shadow everything behind them.
   state.depthClamp = depthClamp;
-  renderer.clear({.state = state, .depth = 1.0});  // filled band by band with the draws below
+  pipeline->clear({.state = state, .depth = 1.0});  // one pass with the draws below
 
-  // Every caster's vertices in the light's clip space, on all threads, kept until the draws are
-  // rasterized: they are then assembled together too (DeferredDraws' Geometry::Kept).
+  // Every caster's vertices in the light's clip space, on all threads, and its indices where the
+  // near plane clips (unclipped, a caster draws its mesh's own indices): the pass's, alive until
+  // it ends below.
   std::vector<size_t> casters;
   for (size_t i = 0; i < instances.size(); ++i)
     if (instances[i].shadowMesh && withinRange(light, instances[i].shadowBounds)) casters.push_back(i);
-  // Each caster's vertices, and its indices where the near plane clips, kept on this thread from
-  // map to map and frame to frame as the shadow volumes' are (volume_renderer.cpp): made anew, the
-  // outdoor scene's lists were allocated on the threads and freed on this one, about 200 a frame,
-  // while the other threads waited. Unclipped, a caster draws its mesh's own indices.
-  // (References: in the tasks below a thread_local's name would be the worker's own.)
-  thread_local std::vector<std::vector<ClipVertex>> keptVertices;
-  thread_local std::vector<std::vector<uint32_t>> keptIndices;
-  std::vector<std::vector<ClipVertex>>& vertices = keptVertices;
-  std::vector<std::vector<uint32_t>>& clippedIndices = keptIndices;
-  if (vertices.size() < casters.size()) vertices.resize(casters.size());
-  if (clippedIndices.size() < casters.size()) clippedIndices.resize(casters.size());
+  std::vector<std::vector<ClipVertex>> vertices(casters.size());
+  std::vector<std::vector<uint32_t>> clippedIndices(clipNear > 0.0 ? casters.size() : 0);
   std::vector<std::span<const uint32_t>> indices(casters.size());
-  renderer.parallelFor(int(casters.size()), [&](int c) {
+  pipeline->forEachIndependent(int(casters.size()), [&](int c) {
     const Instance& inst = instances[casters[size_t(c)]];
     const VertexTransform xf{view * inst.world, projection};
     const Mesh& mesh = *inst.shadowMesh;
     std::vector<ClipVertex>& v = vertices[size_t(c)];
-    v.clear();
     v.resize(mesh.positions.size());
     for (size_t k = 0; k < mesh.positions.size(); ++k) v[k].position = xf.toClip(glm::dvec4(mesh.positions[k], 1.0));
     if (clipNear > 0.0) {
       std::vector<uint32_t>& clipped = clippedIndices[size_t(c)];
-      clipped.clear();
       appendClippedTriangles(mesh, frontOf(xf.modelView, clipNear), xf, v, clipped);
       indices[size_t(c)] = clipped;
     } else {
       indices[size_t(c)] = triangleIndices(mesh);
     }
   });
-  {
-    const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
-    for (size_t c = 0; c < casters.size(); ++c) {
-      RenderState mirrored;
-      DrawCall call;
-      call.state = &stateFor(state, instances[casters[c]], mirrored);
-      call.vertices = vertices[c];
-      call.indices = indices[c];
-      call.tag = drawTag(DrawKind::ShadowMap, int(casters[c]));
-      renderer.draw(call);
-    }
+  const PassStates states(state);
+  for (size_t c = 0; c < casters.size(); ++c) {
+    DrawCall call;
+    call.state = &states.of(instances[casters[c]]);
+    call.vertices = vertices[c];
+    call.indices = indices[c];
+    call.tag = drawTag(DrawKind::ShadowMap, int(casters[c]));
+    pipeline->draw(call);
   }
-  stats += renderer.stats();
+  pipeline->endPass();
+  stats += pipeline->stats();
   DepthTexture tex;
   tex.width = tex.height = size;
   // Float32 codes are the floats' bits already (decode, then float(), gives them back unchanged):
   // the buffer becomes the texture. Unorm24 codes are converted in place.
-  tex.bits = std::move(fb.depthCodes());
+  tex.bits = std::move(pipeline->framebuffer().depthCodes());
   if (fb.depthCodec().format != DepthFormat::Float32)
     for (uint32_t& texel : tex.bits) texel = std::bit_cast<uint32_t>(float(fb.depthCodec().decode(texel)));
   return tex;
@@ -205,7 +192,7 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
 
 std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vector<Instance>& instances,
                                               const SceneView& view, const Light& light, bool trapezoidal,
-                                              int threads, RasterStats& stats) {
+                                              const Pipeline& frame, RasterStats& stats) {
   auto ls = std::make_unique<LightShadow>();
   ls->light = light;
   const Aabb bounds = worldBounds(instances);
@@ -215,7 +202,7 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
     ls->cubeLookup.lightPosition = light.position;
     ls->views = pointLightCubeViews(light, bounds);
     for (size_t f = 0; f < 6; ++f) {
-      ls->textures[f] = renderDepthMap(scene, instances, light, ls->views[f].view, ls->views[f].projection, threads, stats);
+      ls->textures[f] = renderDepthMap(scene, instances, light, ls->views[f].view, ls->views[f].projection, frame, stats);
       configureLookup(ls->cubeLookup.faces[f], ls->textures[f], textureMatrix(ls->views[f]), scene.shadow);
     }
     return ls;
@@ -238,7 +225,7 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
     T = textureMatrix(lv, ls->warp);
   }
   const bool clipToFront = trapezoidal && light.type == LightType::Spot;
-  ls->textures[0] = renderDepthMap(scene, instances, light, lv.view, projection, threads, stats,
+  ls->textures[0] = renderDepthMap(scene, instances, light, lv.view, projection, frame, stats,
                                    clipToFront ? lv.nearPlane : 0.0, ls->focusedDepth);
   configureLookup(ls->lookup, ls->textures[0], T, scene.shadow);
   return ls;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gl/depth_compare_sampler.h"
+#include "gl/pipeline.h"
 #include "gl/raster_stats.h"
 #include "scene/scene.h"
 #include "shadow/light_view.h"
@@ -77,20 +78,20 @@ glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const 
                             const glm::dvec3& anchor);
 
 // Renders `light`'s map(s) with the scene's ShadowSettings and sets up the lookup. `trapezoidal`
-// selects TSM for directional and spot lights (point lights always get cube maps). Raster work
-// adds to `stats`.
+// selects TSM for directional and spot lights (point lights always get cube maps). Each map is
+// drawn by a pipeline like `frame` (Pipeline::forFramebuffer). Raster work adds to `stats`.
 std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vector<Instance>& instances,
                                               const SceneView& view, const Light& light, bool trapezoidal,
-                                              int threads, RasterStats& stats);
+                                              const Pipeline& frame, RasterStats& stats);
 
 // Step 1 alone: depth from the light into a size × size map through `view` and `projection`
 // (P_light, or N_T · P_light for TSM, [Hempe 2004, Listing 11]). Casters are the instances' shadow
 // meshes (the low-poly proxy where given, [DSS article]) within the light's range. clipNear > 0:
 // triangles are first clipped to the front of the light's near plane at that distance (a
 // perspective map warped by N_T, see light_shadow.cpp). depthClamp: ARB_depth_clamp in the
-// pass (TSM).
+// pass (TSM). Drawn by a pipeline like `frame` (Pipeline::forFramebuffer), in one pass.
 DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& instances, const Light& light,
-                            const glm::dmat4& view, const glm::dmat4& projection, int threads, RasterStats& stats,
-                            double clipNear = 0.0, bool depthClamp = false);
+                            const glm::dmat4& view, const glm::dmat4& projection, const Pipeline& frame,
+                            RasterStats& stats, double clipNear = 0.0, bool depthClamp = false);
 
 }  // namespace shadowref

@@ -14,6 +14,10 @@ const RenderState& stateFor(const RenderState& state, const Instance& instance, 
   return scratch;
 }
 
+PassStates::PassStates(const RenderState& state) : plain(state), mirrored(state) {
+  mirrored.frontFace = state.frontFace == FrontFace::CCW ? FrontFace::CW : FrontFace::CCW;
+}
+
 namespace {
 
 // Vertices [first, last) of a prepared instance: clip position, world position and normal (the
@@ -40,7 +44,7 @@ constexpr size_t kVertexRange = 1024;
 
 }  // namespace
 
-void forEachVertexRange(Renderer* renderer, std::span<const size_t> counts,
+void forEachVertexRange(Pipeline* pipeline, std::span<const size_t> counts,
                         const std::function<void(size_t item, size_t first, size_t last)>& fn) {
   struct Range {
     size_t item, first, last;
@@ -53,16 +57,16 @@ void forEachVertexRange(Renderer* renderer, std::span<const size_t> counts,
     const Range& range = ranges[size_t(r)];
     fn(range.item, range.first, range.last);
   };
-  if (renderer) {
-    renderer->parallelFor(int(ranges.size()), run);
+  if (pipeline) {
+    pipeline->forEachIndependent(int(ranges.size()), run);
   } else {
     for (size_t r = 0; r < ranges.size(); ++r) run(int(r));
   }
 }
 
-void prepareInstancesInto(const std::vector<Instance>& instances, const SceneView& view, Renderer* renderer,
-                          std::vector<PreparedInstance>& out) {
-  out.resize(instances.size());
+std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
+                                               Pipeline* pipeline) {
+  std::vector<PreparedInstance> out(instances.size());
   std::vector<glm::dmat3> normalMatrices(instances.size());
   std::vector<size_t> counts(instances.size());
   for (size_t i = 0; i < instances.size(); ++i) {
@@ -76,25 +80,11 @@ void prepareInstancesInto(const std::vector<Instance>& instances, const SceneVie
     counts[i] = inst.mesh->positions.size();
     p.vertices.resize(counts[i]);  // constructed by prepareVertices
     p.indices = triangleIndices(*inst.mesh);
-    p.setups.forget();
   }
-  forEachVertexRange(renderer, counts, [&](size_t i, size_t first, size_t last) {
+  forEachVertexRange(pipeline, counts, [&](size_t i, size_t first, size_t last) {
     prepareVertices(out[i], normalMatrices[i], first, last);
   });
-}
-
-std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
-                                               Renderer* renderer) {
-  std::vector<PreparedInstance> out;
-  prepareInstancesInto(instances, view, renderer, out);
   return out;
-}
-
-std::span<const PreparedInstance> prepareFrameInstances(const std::vector<Instance>& instances, const SceneView& view,
-                                                        Renderer& renderer) {
-  thread_local std::vector<PreparedInstance> kept;
-  prepareInstancesInto(instances, view, &renderer, kept);
-  return kept;
 }
 
 PhongLight toPhongLight(const Light& light) {
@@ -210,27 +200,27 @@ void lightVertices(const PreparedInstance& p, const LightingSetup& lighting, Cli
   }
 }
 
-void drawInstance(Renderer& renderer, const RenderState& state, const LitInstance& item, const FragmentShader& shader,
+void drawInstance(Pipeline& pipeline, const PassStates& states, const LitInstance& item, const FragmentShader& shader,
                   DrawKind kind) {
   const PreparedInstance& p = *item.prepared;
-  RenderState mirrored;
   DrawCall call;
-  call.state = &stateFor(state, *p.instance, mirrored);
+  call.state = &states.of(*p.instance);
   call.indices = p.indices;
   call.tag = drawTag(kind, p.index);
   // A Gouraud material's passes draw its shaded vertices, the others `vertices`: each pass the
-  // same array, whose setups the next pass takes (SetupReuse).
+  // same array, with the same positions (a pipeline may find the triangles it set up before).
   call.vertices = item.shadedVertices ? std::span<const ClipVertex>(*item.shadedVertices) : std::span<const ClipVertex>(p.vertices);
   call.shader = &shader;
-  renderer.draw(call, &p.setups);
+  pipeline.draw(call);
 }
 
 }  // namespace
 
-void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+void drawLit(Pipeline& pipeline, const RenderState& state, const Scene& scene, const SceneView& view,
              std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
              DrawKind kind) {
-  std::vector<LightingGroup> groups;  // declared first: its shaders outlive the deferred draws
+  // The pass's shaders, states and vertices, alive until it ends below.
+  std::vector<LightingGroup> groups;
   std::vector<LitInstance> items;
   items.reserve(prepared.size());
   std::vector<uint8_t> reached(lights.size());
@@ -248,31 +238,17 @@ void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, c
   // The Gouraud instances' vertices lit on all threads, before any draw.
   std::vector<size_t> counts(items.size());
   for (size_t i = 0; i < items.size(); ++i) counts[i] = items[i].shadedVertices ? items[i].shadedVertices->size() : 0;
-  forEachVertexRange(&renderer, counts, [&](size_t i, size_t first, size_t last) {
+  forEachVertexRange(&pipeline, counts, [&](size_t i, size_t first, size_t last) {
     lightVertices(*items[i].prepared, groups[items[i].group].lighting, *items[i].shadedVertices, first, last);
   });
-  // The prepared and shaded vertices and the indices stay put.
-  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
-  for (const LitInstance& item : items) drawInstance(renderer, state, item, *groups[item.group].shader, kind);
+  const PassStates states(state);
+  for (const LitInstance& item : items) drawInstance(pipeline, states, item, *groups[item.group].shader, kind);
+  pipeline.endPass();
 }
 
-void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+void drawAmbient(Pipeline& pipeline, const RenderState& state, const Scene& scene, const SceneView& view,
                  std::span<const PreparedInstance> prepared, DrawKind kind) {
-  drawLit(renderer, state, scene, view, prepared, {}, true, kind);
-}
-
-void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared,
-                   DrawKind kind) {
-  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
-  for (const PreparedInstance& p : prepared) {
-    RenderState mirrored;
-    DrawCall call;
-    call.state = &stateFor(state, *p.instance, mirrored);
-    call.vertices = p.vertices;
-    call.indices = p.indices;
-    call.tag = drawTag(kind, p.index);
-    renderer.draw(call);
-  }
+  drawLit(pipeline, state, scene, view, prepared, {}, true, kind);
 }
 
 }  // namespace shadowref

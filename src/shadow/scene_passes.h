@@ -1,5 +1,5 @@
-// Drawing a scene's instances through the raster pipeline: the building blocks every shadow
-// method's passes are made of (ambient pass, lit pass, depth-only pass).
+// Drawing a scene's instances through a pipeline (gl/pipeline.h): the building blocks every shadow
+// method's passes are made of (ambient pass, lit pass).
 #pragma once
 
 #include <cstddef>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gl/lighting.h"
-#include "exec/renderer.h"
+#include "gl/pipeline.h"
 #include "gl/vertex.h"
 #include "gl/vertex_stage.h"
 #include "scene/scene.h"
@@ -27,11 +27,9 @@ struct PreparedInstance {
   std::span<const uint32_t> indices;  // the mesh's own (triangleIndices)
   // A Gouraud material's vertices as its passes draw them: the clip positions of `vertices`, the
   // varyings each vertex's colour for the pass (drawLit; the shadow maps' camera pass, a colour per
-  // light) — one array for the frame, so that each pass draws the same one.
+  // light) — one array for the frame, refilled between passes (the draw contract allows it), so
+  // that each pass draws the same one.
   mutable ClipVertexBuffer shadedVertices;
-  // The setups of its scene draws (ambient, then each light's lit pass: the same triangles in a
-  // state that sets them up alike), kept for the frame's next pass.
-  mutable SetupReuse setups;
 };
 
 // The state to draw an instance with: `state` itself, or for a mirrored instance (det(world) < 0,
@@ -39,25 +37,23 @@ struct PreparedInstance {
 // flipped, so facing, culling and two-sided stencil see the faces they would unmirrored.
 const RenderState& stateFor(const RenderState& state, const Instance& instance, RenderState& scratch);
 
-// Every instance's vertices transformed for `view`; on the renderer's threads when one is given
-// (in ranges of vertices: the same bits, each vertex by itself).
+// A pass's state and its mirrored copy (stateFor), made once for the pass and alive as long as
+// it: its draws borrow them until the pass ends (the draw contract, gl/pipeline.h).
+struct PassStates {
+  RenderState plain, mirrored;
+  explicit PassStates(const RenderState& state);
+  const RenderState& of(const Instance& instance) const { return instance.mirrored ? mirrored : plain; }
+};
+
+// Every instance's vertices transformed for `view`; on the pipeline's threads when one is given
+// (forEachIndependent, in ranges of vertices: the same bits, each vertex by itself).
 std::vector<PreparedInstance> prepareInstances(const std::vector<Instance>& instances, const SceneView& view,
-                                               Renderer* renderer = nullptr);
-// The same into `out`, whose instances keep the buffers they grew in the last call (their setups
-// forgotten).
-void prepareInstancesInto(const std::vector<Instance>& instances, const SceneView& view, Renderer* renderer,
-                          std::vector<PreparedInstance>& out);
-// The same into one list kept on the calling thread from frame to frame, for a frame's passes:
-// valid until the next call on this thread. Made anew each frame, the city's 129 instances
-// allocated and freed about 650 buffers a frame on the calling thread while the other threads
-// waited.
-std::span<const PreparedInstance> prepareFrameInstances(const std::vector<Instance>& instances, const SceneView& view,
-                                                        Renderer& renderer);
+                                               Pipeline* pipeline = nullptr);
 
 // fn(item, first, last) for the vertices [first, last) of every item, items having counts[item]
-// vertices, in ranges of about a thousand: on the renderer's threads when one is given. Each vertex
+// vertices, in ranges of about a thousand: on the pipeline's threads when one is given. Each vertex
 // is worked on by itself, so the bits do not depend on the ranges.
-void forEachVertexRange(Renderer* renderer, std::span<const size_t> counts,
+void forEachVertexRange(Pipeline* pipeline, std::span<const size_t> counts,
                         const std::function<void(size_t item, size_t first, size_t last)>& fn);
 
 PhongLight toPhongLight(const Light& light);
@@ -68,17 +64,15 @@ PhongMaterial toPhongMaterial(const Material& material);
 bool withinRange(const Light& light, const Aabb& worldBounds);
 
 // Draws every instance with lighting from `lights` (only those in range of each instance), the
-// ambient term included when `includeAmbient`. Per-pixel or Gouraud, as each material says.
-void drawLit(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+// ambient term included when `includeAmbient`. Per-pixel or Gouraud, as each material says. Its
+// draws are one pass with what was drawn or cleared before it, which it ends: the shaders and
+// states they borrow are its own.
+void drawLit(Pipeline& pipeline, const RenderState& state, const Scene& scene, const SceneView& view,
              std::span<const PreparedInstance> prepared, std::span<const Light> lights, bool includeAmbient,
              DrawKind kind = DrawKind::Lit);
 
-// Ambient light only (step 1 of [Kuhn 2016, §3.1]): fills the depth buffer.
-void drawAmbient(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+// Ambient light only (step 1 of [Kuhn 2016, §3.1]): fills the depth buffer. Ends the pass.
+void drawAmbient(Pipeline& pipeline, const RenderState& state, const Scene& scene, const SceneView& view,
                  std::span<const PreparedInstance> prepared, DrawKind kind = DrawKind::Ambient);
-
-// Depth (and stencil) only, no colour.
-void drawDepthOnly(Renderer& renderer, const RenderState& state, std::span<const PreparedInstance> prepared,
-                   DrawKind kind = DrawKind::ShadowMap);
 
 }  // namespace shadowref

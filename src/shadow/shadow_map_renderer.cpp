@@ -8,7 +8,7 @@
 
 #include "gl/accumulation.h"
 #include "gl/clear.h"
-#include "exec/color_columns.h"
+#include "gl/color_columns.h"
 #include "gl/lighting.h"
 #include "shadow/draw_tag.h"
 #include "shadow/light_shadow.h"
@@ -20,10 +20,6 @@
 namespace shadowref {
 
 namespace {
-
-// What a shadow-map lookup adds to a fragment's work (FragmentShader::fragmentWork), per light:
-// its matrix, divisions and texel reads, about half a plain fragment's.
-constexpr int kLookupFragmentWork = 2;
 
 // The camera pass's shader: GL_MODULATE of the lit colour by the compare result
 // ([Hempe 2004, §5.1.2]), per light: colour = sum over lights of (ambient / n + diffuse_i +
@@ -40,10 +36,6 @@ class ShadowMappedShader final : public FragmentShader {
   }
 
   int varyingCount() const override { return 6; }
-  int fragmentWork() const override {  // without shadows: the ambient term alone (shadeBatch)
-    if (shadows_.empty()) return kPlainFragmentWork;
-    return lightingFragmentWork(terms_) + kLookupFragmentWork * int(shadows_.size());
-  }
 
   void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override {
     if (shadows_.empty()) {
@@ -103,7 +95,6 @@ class ShadowMappedGouraudShader final : public FragmentShader {
   explicit ShadowMappedGouraudShader(std::vector<const LightShadow*> shadows) : shadows_(std::move(shadows)) {}
 
   int varyingCount() const override { return kFirstColor + 3 * int(shadows_.size()); }
-  int fragmentWork() const override { return kPlainFragmentWork + kLookupFragmentWork * int(shadows_.size()); }
 
   // shade()'s sum in columns, one channel at a time over the batch (the loops vectorise): the
   // same operations per fragment, in the same order.
@@ -166,14 +157,15 @@ struct CameraGroup {
   std::unique_ptr<FragmentShader> perPixel;  // ShadowMappedShader, made for a per-pixel instance
 };
 
-// Step 2 for one set of lights (one accumulation frame). Returns false when a Gouraud material had
-// to be lit per pixel: more lights than ShadowMappedGouraudShader has varyings for.
-bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& scene, const SceneView& view,
+// Step 2 for one set of lights (one accumulation frame): one pass with what was drawn or cleared
+// before, which ends here (its shaders and states are its own). Returns false when a Gouraud
+// material had to be lit per pixel: more lights than ShadowMappedGouraudShader has varyings for.
+bool drawCameraPass(Pipeline& pipeline, const RenderState& state, const Scene& scene, const SceneView& view,
                     std::span<const PreparedInstance> prepared, const std::vector<std::unique_ptr<LightShadow>>& shadows) {
   std::vector<const LightShadow*> active;
   for (const auto& s : shadows) active.push_back(s.get());
   const bool fitGouraud = active.size() <= size_t(ShadowMappedGouraudShader::kMaxLights);
-  std::vector<CameraGroup> groups;  // its shaders outlive the deferred draws
+  std::vector<CameraGroup> groups;  // its shaders outlive the pass
   std::vector<size_t> groupOf(prepared.size());
   std::vector<uint8_t> gouraud(prepared.size());
   std::vector<uint8_t> reached(active.size());
@@ -203,32 +195,32 @@ bool drawCameraPass(Renderer& renderer, const RenderState& state, const Scene& s
     gouraudKept = gouraudKept && (!wants || fitGouraud);
   }
   // The Gouraud materials' vertices lit on all threads, into their instances' shaded vertices
-  // (kept from frame to frame with the instances); they outlive the deferred draws.
+  // (the frame's, refilled for each accumulation frame's pass).
   std::vector<size_t> counts(prepared.size());
   for (size_t i = 0; i < prepared.size(); ++i) {
     if (!gouraud[i]) continue;
     counts[i] = prepared[i].vertices.size();
     prepared[i].shadedVertices.resize(counts[i]);  // constructed by gouraudCameraVertices
   }
-  forEachVertexRange(&renderer, counts, [&](size_t i, size_t first, size_t last) {
+  forEachVertexRange(&pipeline, counts, [&](size_t i, size_t first, size_t last) {
     gouraudCameraVertices(prepared[i], groups[groupOf[i]].lighting, 1.0 / double(active.size()),
                           prepared[i].shadedVertices, first, last);
   });
-  const ShadowMappedGouraudShader gouraudShader(active);  // outlives the deferred draws too
-  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // the prepared geometry stays put
+  const ShadowMappedGouraudShader gouraudShader(active);  // outlives the pass too
+  const PassStates states(state);
   for (size_t i = 0; i < prepared.size(); ++i) {
     const PreparedInstance& p = prepared[i];
-    RenderState mirrored;
     DrawCall call;
-    call.state = &stateFor(state, *p.instance, mirrored);
+    call.state = &states.of(*p.instance);
     call.vertices = gouraud[i] ? std::span<const ClipVertex>(p.shadedVertices) : std::span<const ClipVertex>(p.vertices);
     call.indices = p.indices;
     call.tag = drawTag(DrawKind::Lit, p.index);
     CameraGroup& group = groups[groupOf[i]];
     if (!gouraud[i] && !group.perPixel) group.perPixel = std::make_unique<ShadowMappedShader>(group.lighting, active);
     call.shader = gouraud[i] ? static_cast<const FragmentShader*>(&gouraudShader) : group.perPixel.get();
-    renderer.draw(call);
+    pipeline.draw(call);
   }
+  pipeline.endPass();
   return gouraudKept;
 }
 
@@ -255,7 +247,8 @@ std::vector<std::vector<Light>> accumulationFrames(const std::vector<Light>& lig
 // projection, [Hempe 2004, Listing 12]), "L0.plain" the same light's unwarped map with the
 // trapezoid drawn over it in black (and a cross at the focus point).
 void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
-                    const std::vector<std::unique_ptr<LightShadow>>& shadows, int threads, FrameResult& result) {
+                    const std::vector<std::unique_ptr<LightShadow>>& shadows, const Pipeline& frame,
+                    FrameResult& result) {
   for (size_t i = 0; i < shadows.size(); ++i) {
     const LightShadow& ls = *shadows[i];
     const std::string name = "L" + std::to_string(i);
@@ -265,7 +258,7 @@ void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
     }
     if (!ls.trapezoidal) continue;
     RasterStats unused;
-    DepthTexture plain = renderDepthMap(scene, instances, ls.light, ls.views[0].view, ls.views[0].projection, threads, unused);
+    DepthTexture plain = renderDepthMap(scene, instances, ls.light, ls.views[0].view, ls.views[0].projection, frame, unused);
     drawTrapezoidOutline(plain, ls.trapezoid);
     result.shadowMaps.push_back(std::move(plain));
     result.shadowMapNames.push_back(name + ".plain");
@@ -275,11 +268,10 @@ void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
 }  // namespace
 
 void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
-                      Renderer& renderer) {
+                      Pipeline& pipeline) {
   const SceneView view = makeCameraView(scene);
-  const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
-  const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
-  Framebuffer& fb = renderer.framebuffer();
+  const std::vector<Instance> instances = scene.instances();
+  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &pipeline);
   const bool trapezoidal = method == ShadowMethod::Trapezoidal;
 
   RenderState state;
@@ -296,10 +288,10 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::unique_ptr<LightShadow>> shadows;
     for (const Light& light : frames[k])
-      shadows.push_back(buildLightShadow(scene, instances, view, light, trapezoidal, renderer.threads(), result.stats));
+      shadows.push_back(buildLightShadow(scene, instances, view, light, trapezoidal, pipeline, result.stats));
     const auto mapsDone = std::chrono::steady_clock::now();
     result.timings.push_back({numberedPass(passCounter, "maps"), std::chrono::duration<double, std::milli>(mapsDone - start).count()});
-    if (k == 0 && options.keepShadowMaps) keepShadowMaps(scene, instances, shadows, renderer.threads(), result);
+    if (k == 0 && options.keepShadowMaps) keepShadowMaps(scene, instances, shadows, pipeline, result);
     if (k == 0) {
       for (size_t i = 0; i < shadows.size(); ++i) {
         std::ostringstream note;
@@ -311,18 +303,18 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
         result.notes.push_back(note.str());
       }
     }
-    renderer.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
-    if (!drawCameraPass(renderer, state, scene, view, prepared, shadows) && k == 0)
+    pipeline.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
+    if (!drawCameraPass(pipeline, state, scene, view, prepared, shadows) && k == 0)
       result.notes.push_back("Gouraud materials lit per pixel: more than " +
                              std::to_string(ShadowMappedGouraudShader::kMaxLights) + " shadow-mapped lights");
     const std::string name = numberedPass(passCounter, accumulating ? "camera-" + std::to_string(k) : "camera");
     result.timings.push_back({name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mapsDone).count()});
-    if (options.onPass) options.onPass(name, fb);
-    if (accumulating) accumulate(fb, state, k == 0 ? AccumOp::Load : AccumOp::Accum, 1.0f / float(frames.size()));
+    if (options.onPass) options.onPass(name, pipeline.framebuffer());
+    if (accumulating) pipeline.accumulate(state, k == 0 ? AccumOp::Load : AccumOp::Accum, 1.0f / float(frames.size()));
   }
   if (accumulating) {
-    accumulate(fb, state, AccumOp::Return, 1.0f);
-    if (options.onPass) options.onPass(numberedPass(passCounter, "return"), fb);
+    pipeline.accumulate(state, AccumOp::Return, 1.0f);
+    if (options.onPass) options.onPass(numberedPass(passCounter, "return"), pipeline.framebuffer());
   }
 }
 

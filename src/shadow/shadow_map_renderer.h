@@ -11,13 +11,13 @@
 //      square area light, each ACCUMed with weight 1/n, then RETURN.
 #pragma once
 
-#include "exec/renderer.h"
+#include "gl/pipeline.h"
 #include "scene/scene.h"
 #include "shadow/frame_renderer.h"
 
 namespace shadowref {
 
 void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
-                      Renderer& renderer);
+                      Pipeline& pipeline);
 
 }  // namespace shadowref

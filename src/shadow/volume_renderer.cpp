@@ -48,13 +48,13 @@ struct alignas(128) VolumeDraw {
   ShadowVolume volume;
   ShadowVolumeWorkspace workspace;
   std::vector<ClipVertex> vertices;
-  std::array<std::vector<uint32_t>, 3> indices;  // per VolumePart, kept until the draws are rasterized
-  const Instance* mirrored = nullptr;  // the instance built, when its world matrix mirrors
+  std::array<std::vector<uint32_t>, 3> indices;  // per VolumePart; the draws borrow them until their pass ends
+  bool mirrored = false;  // the instance built has a world matrix that mirrors
 
   void build(const PreparedInstance& p, const Light& light, const ShadowSettings& settings, bool withCaps) {
     const glm::dvec4 objectLight = lightInObjectSpace(p.instance->world, light.homogeneous());
     buildShadowVolume(*p.instance->shadowMesh, objectLight, settings.silhouette, withCaps, volume, &workspace);
-    mirrored = p.instance->mirrored ? p.instance : nullptr;
+    mirrored = p.instance->mirrored;
     vertices.resize(volume.positions.size());
     for (size_t i = 0; i < volume.positions.size(); ++i) vertices[i].position = p.transform.toClip(volume.positions[i]);
     for (const VolumePart part : {VolumePart::Side, VolumePart::FrontCap, VolumePart::BackCap}) {
@@ -64,26 +64,30 @@ struct alignas(128) VolumeDraw {
     }
   }
 
-  void draw(Renderer& renderer, const RenderState& state, VolumePart part, DrawKind kind, int instance,
-            const FragmentShader* shader = nullptr) {
-    RenderState mirroredState;
+  void draw(Pipeline& pipeline, const PassStates& states, VolumePart part, DrawKind kind, int instance,
+            const FragmentShader* shader) const {
     const std::vector<uint32_t>& list = indices[size_t(part)];
     if (list.empty()) return;
     DrawCall call;
-    call.state = mirrored ? &stateFor(state, *mirrored, mirroredState) : &state;
+    call.state = mirrored ? &states.mirrored : &states.plain;
     call.vertices = vertices;
     call.indices = list;
     call.shader = shader;
     call.tag = drawTag(kind, instance);
-    renderer.draw(call);
+    pipeline.draw(call);
   }
 
-  void drawAll(Renderer& renderer, const RenderState& state, int instance, const FragmentShader* shader = nullptr) {
-    draw(renderer, state, VolumePart::Side, DrawKind::VolumeSides, instance, shader);
-    draw(renderer, state, VolumePart::FrontCap, DrawKind::FrontCap, instance, shader);
-    draw(renderer, state, VolumePart::BackCap, DrawKind::BackCap, instance, shader);
+  void drawAll(Pipeline& pipeline, const PassStates& states, int instance, const FragmentShader* shader = nullptr) const {
+    draw(pipeline, states, VolumePart::Side, DrawKind::VolumeSides, instance, shader);
+    draw(pipeline, states, VolumePart::FrontCap, DrawKind::FrontCap, instance, shader);
+    draw(pipeline, states, VolumePart::BackCap, DrawKind::BackCap, instance, shader);
   }
 };
+
+// The states of a pass with their mirrored copies (PassStates), alive as long as the pass.
+std::vector<PassStates> withMirrored(const std::vector<RenderState>& states) {
+  return std::vector<PassStates>(states.begin(), states.end());
+}
 
 bool castsFor(const PreparedInstance& p, const Light& light) {
   return p.instance->shadowMesh != nullptr && withinRange(light, p.instance->shadowBounds);
@@ -91,8 +95,8 @@ bool castsFor(const PreparedInstance& p, const Light& light) {
 
 // Step 2: the volumes of every caster into the (cleared) stencil buffer. The volumes are built
 // first, on all threads (each caster's own, independent of the others), then drawn in the
-// casters' order.
-LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Scene& scene, const SceneView& view,
+// casters' order, one pass that ends here; `volumes` (the frame's) keeps their arrays.
+LightTotals drawVolumePass(Pipeline& pipeline, const RenderState& base, const Scene& scene, const SceneView& view,
                            std::span<const PreparedInstance> prepared, const Light& light, ShadowMethod method,
                            std::vector<VolumeDraw>& volumes) {
   LightTotals totals;
@@ -114,14 +118,13 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
   std::stable_sort(largestFirst.begin(), largestFirst.end(), [&](size_t a, size_t b) {
     return casters[a]->instance->shadowMesh->triangles.size() > casters[b]->instance->shadowMesh->triangles.size();
   });
-  renderer.parallelFor(int(casters.size()), [&](int k) {
+  pipeline.forEachIndependent(int(casters.size()), [&](int k) {
     const size_t i = largestFirst[size_t(k)];
     volumes[i].build(*casters[i], light, scene.shadow, how[i] == StencilCounting::ZFail);
   });
   // The counting states of each kind, made once for the pass rather than once a caster.
-  const std::vector<RenderState> zpassStates = volumePassStates(base, StencilCounting::ZPass, counting);
-  const std::vector<RenderState> zfailStates = volumePassStates(base, StencilCounting::ZFail, counting);
-  const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);  // `volumes` outlives it
+  const std::vector<PassStates> zpassStates = withMirrored(volumePassStates(base, StencilCounting::ZPass, counting));
+  const std::vector<PassStates> zfailStates = withMirrored(volumePassStates(base, StencilCounting::ZFail, counting));
   for (size_t i = 0; i < casters.size(); ++i) {
     const PreparedInstance& p = *casters[i];
     VolumeDraw& volume = volumes[i];
@@ -132,39 +135,49 @@ LightTotals drawVolumePass(Renderer& renderer, const RenderState& base, const Sc
     totals.volume.sideTriangles += volume.volume.stats.sideTriangles;
     totals.volume.frontCapTriangles += volume.volume.stats.frontCapTriangles;
     totals.volume.backCapTriangles += volume.volume.stats.backCapTriangles;
-    for (const RenderState& state : how[i] == StencilCounting::ZFail ? zfailStates : zpassStates)
-      volume.drawAll(renderer, state, p.index);
+    for (const PassStates& states : how[i] == StencilCounting::ZFail ? zfailStates : zpassStates)
+      volume.drawAll(pipeline, states, p.index);
   }
+  pipeline.endPass();
   return totals;
 }
 
 // Teaching views: front faces red / back faces blue ([SV slides]), or translucent red volumes
-// ([DSS article]).
-void drawVolumeView(Renderer& renderer, const RenderState& base, const Scene& scene, const SceneView& view,
+// ([DSS article]). One pass a light: its casters' volumes built into `volumes` (the frame's), then
+// drawn in the casters' order.
+void drawVolumeView(Pipeline& pipeline, const RenderState& base, const Scene& scene, const SceneView& view,
                     std::span<const PreparedInstance> prepared, const std::vector<Light>& lights, ShadowMethod method,
-                    VolumeViewMode mode, VolumeDraw& scratch) {
+                    VolumeViewMode mode, std::vector<VolumeDraw>& volumes) {
   RenderState state = base;
   state.depthTest = true;
   state.depthFunc = CompareFunc::Less;
   state.depthWrite = false;
   state.blend = {true, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha};
+  auto culling = [&](CullMode cull) {
+    state.cull = cull;
+    return PassStates(state);
+  };
+  const PassStates overlay = culling(CullMode::None), backFaces = culling(CullMode::Front),
+                   frontFaces = culling(CullMode::Back);
   const ConstantColorShader red({1.0, 0.0, 0.0, mode == VolumeViewMode::Overlay ? 0.3 : 0.45});
   const ConstantColorShader blue({0.0, 0.2, 1.0, 0.45});
   for (const Light& light : lights) {
-    for (const PreparedInstance& p : prepared) {
-      if (!castsFor(p, light)) continue;
+    std::vector<const PreparedInstance*> casters;
+    for (const PreparedInstance& p : prepared)
+      if (castsFor(p, light)) casters.push_back(&p);
+    if (volumes.size() < casters.size()) volumes.resize(casters.size());
+    for (size_t i = 0; i < casters.size(); ++i) {
+      const PreparedInstance& p = *casters[i];
       const StencilCounting how = countingFor(method, *p.instance, scene, view, light);
-      scratch.build(p, light, scene.shadow, how == StencilCounting::ZFail);
+      volumes[i].build(p, light, scene.shadow, how == StencilCounting::ZFail);
       if (mode == VolumeViewMode::Overlay) {
-        state.cull = CullMode::None;
-        scratch.drawAll(renderer, state, p.index, &red);
+        volumes[i].drawAll(pipeline, overlay, p.index, &red);
         continue;
       }
-      state.cull = CullMode::Front;  // back faces
-      scratch.drawAll(renderer, state, p.index, &blue);
-      state.cull = CullMode::Back;   // front faces
-      scratch.drawAll(renderer, state, p.index, &red);
+      volumes[i].drawAll(pipeline, backFaces, p.index, &blue);
+      volumes[i].drawAll(pipeline, frontFaces, p.index, &red);
     }
+    pipeline.endPass();
   }
 }
 
@@ -198,19 +211,19 @@ RenderState volumeBaseState(const SceneView& view) {
 }
 
 void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
-                         Renderer& renderer) {
+                         Pipeline& pipeline) {
   // Volumes reach infinity: P_inf, no far clipping ([Kuhn 2016, §3.3]).
   const SceneView view = makeCameraView(scene, true);
-  const std::vector<Instance> instances = scene.instances(Scene::Paths::Omitted);
-  const std::span<const PreparedInstance> prepared = prepareFrameInstances(instances, view, renderer);
-  Framebuffer& fb = renderer.framebuffer();
+  const std::vector<Instance> instances = scene.instances();
+  const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &pipeline);
   int passCounter = 0;
+  // Every pass ends inside fn (drawLit, drawVolumePass, drawVolumeView end theirs).
   auto pass = [&](const std::string& what, auto&& fn) {
     const auto start = std::chrono::steady_clock::now();
     fn();
     const std::string name = numberedPass(passCounter, what);
     result.timings.push_back({name, millisecondsSince(start)});
-    if (options.onPass) options.onPass(name, fb);
+    if (options.onPass) options.onPass(name, pipeline.framebuffer());
   };
 
   const RenderState base = volumeBaseState(view);
@@ -221,9 +234,9 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
 
   const bool darken = scene.shadow.darkenComposite;
   pass(darken ? "lit" : "ambient", [&] {
-    renderer.clear({.state = base, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
-    if (darken) drawLit(renderer, base, scene, view, prepared, lights, true, DrawKind::Lit);
-    else drawAmbient(renderer, base, scene, view, prepared);
+    pipeline.clear({.state = base, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
+    if (darken) drawLit(pipeline, base, scene, view, prepared, lights, true, DrawKind::Lit);
+    else drawAmbient(pipeline, base, scene, view, prepared);
   });
 
   RenderState volumeBase = base;
@@ -237,35 +250,33 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
   }
   if (!darken) composite.blend = {true, BlendFactor::One, BlendFactor::One};
 
-  // One per caster of a light, kept from light to light and from frame to frame on this thread:
-  // a caster's volume reuses the buffers it grew before. New ones each frame cost the city's 129
-  // casters about 4100 allocations a frame, made on the worker threads and freed on this one at
-  // the frame's end, while the others waited. Each light rebuilds what it draws, so nothing of a
-  // frame before is drawn again.
-  thread_local std::vector<VolumeDraw> volumes(1);
+  // One per caster of a light, kept from light to light for the frame: a caster's volume reuses
+  // the buffers it grew for the light before. Each light rebuilds what it draws, once the pass
+  // that drew the volumes before has ended.
+  std::vector<VolumeDraw> volumes;
   for (size_t i = 0; i < lights.size(); ++i) {
     const Light& light = lights[i];
     const std::string suffix = "L" + std::to_string(i);
     LightTotals totals;
-    const RasterStats before = renderer.stats();
+    const RasterStats before = pipeline.stats();
     pass("stencil-" + suffix, [&] {
-      renderer.clear({.state = base, .stencil = 0});
-      totals = drawVolumePass(renderer, volumeBase, scene, view, prepared, light, method, volumes);
+      pipeline.clear({.state = base, .stencil = 0});
+      totals = drawVolumePass(pipeline, volumeBase, scene, view, prepared, light, method, volumes);
     });
-    result.notes.push_back(lightNote(i, light, totals, before, renderer.stats()));
+    result.notes.push_back(lightNote(i, light, totals, before, pipeline.stats()));
     if (options.keepStencil) {
-      result.stencilPerLight.push_back(fb.stencil());
+      result.stencilPerLight.push_back(pipeline.framebuffer().stencil());
       result.stencilLightNames.push_back(suffix);
     }
     pass((darken ? "darken-" : "lit-") + suffix, [&] {
-      if (darken) drawAmbient(renderer, composite, scene, view, prepared, DrawKind::Darken);
-      else drawLit(renderer, composite, scene, view, prepared, std::span<const Light>(&light, 1), false);
+      if (darken) drawAmbient(pipeline, composite, scene, view, prepared, DrawKind::Darken);
+      else drawLit(pipeline, composite, scene, view, prepared, std::span<const Light>(&light, 1), false);
     });
   }
 
   if (options.volumeView != VolumeViewMode::None) {
     pass(options.volumeView == VolumeViewMode::Overlay ? "volumes-overlay" : "volumes", [&] {
-      drawVolumeView(renderer, base, scene, view, prepared, lights, method, options.volumeView, volumes[0]);
+      drawVolumeView(pipeline, base, scene, view, prepared, lights, method, options.volumeView, volumes);
     });
   }
 }

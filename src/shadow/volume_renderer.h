@@ -9,7 +9,7 @@
 // scene redrawn where stencil != 0.
 #pragma once
 
-#include "exec/renderer.h"
+#include "gl/pipeline.h"
 #include "scene/scene.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/scene_view.h"
@@ -22,6 +22,6 @@ namespace shadowref {
 RenderState volumeBaseState(const SceneView& view);
 
 void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
-                         Renderer& renderer);
+                         Pipeline& pipeline);
 
 }  // namespace shadowref

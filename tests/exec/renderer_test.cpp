@@ -1,5 +1,6 @@
 // The draw call as a whole: scissor, the canonical vertex rotation that makes equal triangles give
 // bit-equal depths (the shadow-volume front cap), determinism, pixel history.
+#include <bit>
 #include <cstring>
 #include <functional>
 #include <optional>
@@ -683,16 +684,19 @@ TEST_CASE("a counting flush the pixel history watches goes by bands and reports 
 }
 
 // ---------------------------------------------------------------------------------------------
-// Kept setups (SetupReuse): a later pass of the same triangles takes the first pass's setups.
+// Kept setups (SetupReuse): a later pass of the same, unchanged arrays takes the setups the
+// renderer kept from the first, which it finds by itself.
 
 namespace {
 
 // Two passes over the queued scene's grid (moved in front of the near plane: nothing clipped) and
 // soups: an ambient-like pass that writes depth and colour, then a lit-like pass (EQUAL, additive
-// blending, stencil counting) with other shaders — each draw with a SetupReuse of its own when
-// `reuse`. Returns the framebuffer; `kept` says whether the first pass kept the grid's setups.
-Framebuffer renderTwoPasses(const QueuedScene& q, int threads, bool queued, bool reuse, RasterStats& stats,
-                            bool& kept) {  Framebuffer fb(160, 128);
+// blending, stencil counting) with other shaders. With `copies` the second pass draws copies of
+// the arrays (elsewhere in memory: nothing to find). Returns the framebuffer; `reused` the draws
+// that took kept setups.
+Framebuffer renderTwoPasses(const QueuedScene& q, int threads, bool queued, bool copies, RasterStats& stats,
+                            uint64_t& reused) {
+  Framebuffer fb(160, 128);
   RenderState first = fullViewportState(fb);
   clearColor(fb, first, {0.1f, 0.2f, 0.3f, 0.4f});
   clearDepth(fb, first, 1.0);
@@ -710,44 +714,48 @@ Framebuffer renderTwoPasses(const QueuedScene& q, int threads, bool queued, bool
   }
   const ConstantColorShader flat({0.2, 0.1, 0.05, 1.0});
   const ColorVaryingShader varying;
-  SetupReuse grid, soupA, soupB;
+  const QueuedScene copy = q;
   Renderer r(fb, threads);
   for (const RenderState* s : {&first, &second}) {
+    const QueuedScene& arrays = s == &second && copies ? copy : q;
     const FragmentShader* shader = s == &first ? static_cast<const FragmentShader*>(&flat) : &varying;
     std::optional<DeferredDraws> deferred;
     if (queued) deferred.emplace(r, DeferredDraws::Geometry::Kept);
-    r.draw({.state = s, .vertices = q.soupA, .indices = {}, .shader = shader}, reuse ? &soupA : nullptr);
-    r.draw({.state = s, .vertices = q.gridVertices, .indices = q.gridIndices, .shader = shader}, reuse ? &grid : nullptr);
-    r.draw({.state = s, .vertices = q.soupB, .indices = {}, .shader = shader}, reuse ? &soupB : nullptr);
+    r.draw({.state = s, .vertices = arrays.soupA, .indices = {}, .shader = shader});
+    r.draw({.state = s, .vertices = arrays.gridVertices, .indices = arrays.gridIndices, .shader = shader});
+    r.draw({.state = s, .vertices = arrays.soupB, .indices = {}, .shader = shader});
   }
   stats = r.stats();
-  kept = grid.holdsSetups();
+  reused = r.drawsReusingSetups();
   return fb;
 }
 
-// A triangle drawn (and its setups kept) by a renderer, then its vertices moved by 16 pixels, then
-// drawn again by the same renderer into a cleared stencil: the picture shows which of the two
-// triangles the second draw covered.
-struct MovedTriangle {
+// A triangle drawn (its setups kept) by a renderer into a cleared stencil; then drawn again by the
+// same renderer, with what `change` changes, into the cleared stencil. The pictures show which
+// triangle each draw covered; the renderer's count whether the second took the kept setups.
+struct Redrawn {
   Framebuffer fb{32, 8};
   RenderState state = coverageCountingState(fb);
-  std::vector<ClipVertex> vertices = windowTriangles(state.viewport, {{1, 1, 0.5}, {7, 1, 0.5}, {1, 7, 0.5}});
+  // Triangle 0 at x 1 … 7, triangle 1 at x 17 … 23.
+  std::vector<ClipVertex> vertices =
+      windowTriangles(state.viewport, {{1, 1, 0.5}, {7, 1, 0.5}, {1, 7, 0.5}, {17, 1, 0.5}, {23, 1, 0.5}, {17, 7, 0.5}});
   std::vector<uint32_t> indices = {0, 1, 2};
-  SetupReuse reuse;
   Renderer renderer;
+  uint64_t reusedBefore = 0;
 
-  explicit MovedTriangle(int threads = 1) : renderer(fb, threads) {
-    renderer.draw({.state = &state, .vertices = vertices, .indices = indices}, &reuse);
-    const std::vector<ClipVertex> moved = windowTriangles(state.viewport, {{17, 1, 0.5}, {23, 1, 0.5}, {17, 7, 0.5}});
-    std::copy(moved.begin(), moved.end(), vertices.begin());  // in place: the same array
+  explicit Redrawn(int threads = 1) : renderer(fb, threads) {
+    clearStencil(fb, state, 0);
+    renderer.draw({.state = &state, .vertices = vertices, .indices = indices});
+    reusedBefore = renderer.drawsReusingSetups();
   }
-  // The second draw's picture, with the first draw's call but for what `change` changes.
+  // The second draw's picture, with the first draw's call but for what `change` changes (it may
+  // change the arrays in place).
   std::string redraw(const std::function<void(DrawCall&, RenderState&)>& change) {
     clearStencil(fb, state, 0);
     RenderState s = state;
     DrawCall call{.state = &s, .vertices = vertices, .indices = indices};
     change(call, s);
-    renderer.draw(call, &reuse);
+    renderer.draw(call);
     return stencilPicture(fb);
   }
   // The same, unchanged, `draws` times in one pass that keeps its geometry (queued at two threads).
@@ -755,19 +763,22 @@ struct MovedTriangle {
     clearStencil(fb, state, 0);
     {
       const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
-      for (int i = 0; i < draws; ++i)
-        renderer.draw({.state = &state, .vertices = vertices, .indices = indices}, &reuse);
+      for (int i = 0; i < draws; ++i) renderer.draw({.state = &state, .vertices = vertices, .indices = indices});
     }
     return stencilPicture(fb);
   }
+  uint64_t reused() const { return renderer.drawsReusingSetups() - reusedBefore; }
 };
 
-// The picture of a triangle assembled afresh: at (1, 1) before the move, at (17, 1) after.
-std::string freshPicture(bool moved) {
+// The picture of triangle `which` of Redrawn assembled afresh, in `s` (coverage counting when
+// not given).
+std::string freshPicture(int which, const std::function<void(RenderState&)>& change = {}) {
   Framebuffer fb(32, 8);
-  const RenderState s = coverageCountingState(fb);
+  RenderState s = coverageCountingState(fb);
+  if (change) change(s);
+  clearStencil(fb, s, 0);
   Renderer r(fb);
-  const double x = moved ? 16.0 : 0.0;
+  const double x = which == 1 ? 16.0 : 0.0;
   draw(r, s, windowTriangles(s.viewport, {{x + 1, 1, 0.5}, {x + 7, 1, 0.5}, {x + 1, 7, 0.5}}));
   return stencilPicture(fb);
 }
@@ -779,15 +790,15 @@ TEST_CASE("a pass that takes the kept setups gives the bytes and counts of assem
   for (uint64_t seed : {21u, 22u}) {
     const QueuedScene q = makeQueuedScene(seed, -1.0);  // the grid in front of the near plane
     RasterStats referenceStats;
-    bool kept = false;
-    const Framebuffer reference = renderTwoPasses(q, 1, false, false, referenceStats, kept);
-    CHECK_FALSE(kept);
+    uint64_t reused = 0;
+    const Framebuffer reference = renderTwoPasses(q, 1, false, true, referenceStats, reused);
+    CHECK(reused == 0);  // copies: other arrays
     for (int threads : {1, 2, 8})
       for (bool queued : {false, true}) {
         INFO("seed " << seed << ", " << threads << " threads, queued " << queued);
         RasterStats stats;
-        const Framebuffer fb = renderTwoPasses(q, threads, queued, true, stats, kept);
-        CHECK(kept);
+        const Framebuffer fb = renderTwoPasses(q, threads, queued, false, stats, reused);
+        CHECK(reused == 3);  // the second pass's soups and grid
         CHECK(sameBytes(reference.color(), fb.color()));
         CHECK(sameBytes(reference.depthCodes(), fb.depthCodes()));
         CHECK(sameBytes(reference.stencil(), fb.stencil()));
@@ -802,21 +813,17 @@ TEST_CASE("a pass that takes the kept setups gives the bytes and counts of assem
   }
 }
 
-TEST_CASE("kept setups are taken only for the same arrays, in a state that sets triangles up alike",
+TEST_CASE("kept setups are taken only for the same, unchanged arrays in a state that sets them up alike",
           "[raster][reuse]") {
-  // The caller promises unchanged vertices; breaking the promise shows whether the setups were
-  // taken: the first triangle's pixels (taken) or the moved one's (assembled again).
-  const std::string before = freshPicture(false), after = freshPicture(true);
-  REQUIRE(before != after);
-  Framebuffer empty(32, 8);
-  clearStencil(empty, fullViewportState(empty), 0);
-  const std::string none = stencilPicture(empty);
+  const std::string first = freshPicture(0), second = freshPicture(1);
+  REQUIRE(first != second);
   SECTION("the same arrays and state: taken") {
-    MovedTriangle m;
-    CHECK(m.redraw([](DrawCall&, RenderState&) {}) == before);
+    Redrawn m;
+    CHECK(m.redraw([](DrawCall&, RenderState&) {}) == first);
+    CHECK(m.reused() == 1);
   }
   SECTION("another depth test, blend, stencil op or scissor: taken") {
-    MovedTriangle m;
+    Redrawn m;
     CHECK(m.redraw([](DrawCall&, RenderState& s) {
       s.depthTest = true;
       s.depthFunc = CompareFunc::LEqual;
@@ -824,11 +831,13 @@ TEST_CASE("kept setups are taken only for the same arrays, in a state that sets 
       s.stencil[0].dppass = StencilOp::IncrWrap;
       s.scissorTest = true;
       s.scissor = {0, 0, 32, 8};
-    }) == before);
+    }) == first);
+    CHECK(m.reused() == 1);
   }
   SECTION("culling, front face, polygon offset, depth range, depth clamp or far clipping changed: assembled") {
     const std::vector<std::function<void(RenderState&)>> changes = {
         [](RenderState& s) { s.cull = CullMode::Back; },
+        [](RenderState& s) { s.cull = CullMode::Front; },
         [](RenderState& s) { s.frontFace = FrontFace::CW; },
         [](RenderState& s) { s.polygonOffset = {true, 1.0, 1.0}; },
         [](RenderState& s) { s.viewport.nearVal = 0.25; },
@@ -837,61 +846,55 @@ TEST_CASE("kept setups are taken only for the same arrays, in a state that sets 
     };
     for (size_t i = 0; i < changes.size(); ++i) {
       INFO("change " << i);
-      MovedTriangle m;
-      RenderState changed = m.state;
-      changes[i](changed);
-      const bool culled = isCulled(facingOf(1, changed.frontFace), changed.cull);  // the triangle is CCW
-      CHECK(m.redraw([&](DrawCall&, RenderState& s) { s = changed; }) == (culled ? none : after));
+      Redrawn m;
+      CHECK(m.redraw([&](DrawCall&, RenderState& s) { changes[i](s); }) == freshPicture(0, changes[i]));
+      CHECK(m.reused() == 0);
     }
   }
-  SECTION("another vertex array, index array or renderer: assembled") {
-    MovedTriangle m;
+  SECTION("vertices moved in place: assembled, the moved triangle drawn") {
+    Redrawn m;
+    CHECK(m.redraw([&](DrawCall&, RenderState&) {
+      for (int k = 0; k < 3; ++k) m.vertices[size_t(k)].position = m.vertices[size_t(k) + 3].position;
+    }) == second);
+    CHECK(m.reused() == 0);
+  }
+  SECTION("indices changed in place: assembled, the other triangle drawn") {
+    Redrawn m;
+    CHECK(m.redraw([&](DrawCall&, RenderState&) { m.indices = {3, 4, 5}; }) == second);
+    CHECK(m.reused() == 0);
+  }
+  SECTION("a position's 0.0 made -0.0 (equal as numbers, not as bytes): assembled") {
+    Redrawn m;
+    REQUIRE(std::bit_cast<uint64_t>(m.vertices[0].position.z) == std::bit_cast<uint64_t>(0.0));
+    CHECK(m.redraw([&](DrawCall&, RenderState&) { m.vertices[0].position.z = -0.0; }) == first);
+    CHECK(m.reused() == 0);
+  }
+  SECTION("the same contents in another array, or another renderer: assembled") {
+    Redrawn m;
     const std::vector<ClipVertex> copy = m.vertices;
-    CHECK(m.redraw([&](DrawCall& c, RenderState&) { c.vertices = copy; }) == after);
-    MovedTriangle n;
-    const std::vector<uint32_t> indices = n.indices;
-    CHECK(n.redraw([&](DrawCall& c, RenderState&) { c.indices = indices; }) == after);
-    MovedTriangle o;
+    CHECK(m.redraw([&](DrawCall& c, RenderState&) { c.vertices = copy; }) == first);
+    CHECK(m.reused() == 0);
+    Redrawn o;
     clearStencil(o.fb, o.state, 0);
     Renderer other(o.fb);
-    other.draw({.state = &o.state, .vertices = o.vertices, .indices = o.indices}, &o.reuse);
-    CHECK(stencilPicture(o.fb) == after);
+    other.draw({.state = &o.state, .vertices = o.vertices, .indices = o.indices});
+    CHECK(stencilPicture(o.fb) == first);
+    CHECK(other.drawsReusingSetups() == 0);
   }
   SECTION("queued on two threads: taken") {
-    MovedTriangle m(2);
-    CHECK(m.redrawQueued(1) == before);
+    Redrawn m(2);
+    CHECK(m.redrawQueued(1) == first);
+    CHECK(m.reused() == 1);
   }
-  SECTION("once per flush: a second draw in the same flush assembles") {
-    MovedTriangle m(2);
-    const std::string both = m.redrawQueued(2);  // the kept triangle once, the moved one once
-    std::string expected = before;
-    for (size_t i = 0; i < expected.size(); ++i)
-      if (after[i] == '1') expected[i] = '1';
-    CHECK(both == expected);
-  }
-}
-
-TEST_CASE("of two draws given one SetupReuse in a flush, the first keeps its setups", "[raster][reuse]") {
-  // Two triangles drawn in one pass with the same SetupReuse (assembled on two threads, each
-  // draw would keep its setups): only the first does. Then the first's vertices are moved in place
-  // and drawn again: its kept setups are taken (the picture before the move).
-  for (int threads : {1, 2}) {
-    INFO(threads << " threads");
-    MovedTriangle m(threads);  // its first draw kept the setups in m.reuse; vertices now moved
-    SetupReuse shared;
-    std::vector<ClipVertex> second = windowTriangles(m.state.viewport, {{9, 1, 0.5}, {15, 1, 0.5}, {9, 7, 0.5}});
-    std::vector<ClipVertex> first = windowTriangles(m.state.viewport, {{1, 1, 0.5}, {7, 1, 0.5}, {1, 7, 0.5}});
-    {
-      const DeferredDraws deferred(m.renderer, DeferredDraws::Geometry::Kept);
-      m.renderer.draw({.state = &m.state, .vertices = first, .indices = m.indices, .shader = nullptr, .tag = 0}, &shared);
-      m.renderer.draw({.state = &m.state, .vertices = second, .indices = m.indices, .shader = nullptr, .tag = 0}, &shared);
-    }
-    REQUIRE(shared.holdsSetups());
-    const std::vector<ClipVertex> moved = windowTriangles(m.state.viewport, {{17, 1, 0.5}, {23, 1, 0.5}, {17, 7, 0.5}});
-    std::copy(moved.begin(), moved.end(), first.begin());
-    clearStencil(m.fb, m.state, 0);
-    m.renderer.draw({.state = &m.state, .vertices = first, .indices = m.indices, .shader = nullptr, .tag = 0}, &shared);
-    CHECK(stencilPicture(m.fb) == freshPicture(false));
+  SECTION("once per flush: of two draws of the arrays in one flush, the first takes the setups") {
+    Redrawn m(2);
+    std::string twice = first;
+    for (char& c : twice)
+      if (c == '1') c = '2';
+    CHECK(m.redrawQueued(2) == twice);
+    CHECK(m.reused() == 1);
+    CHECK(m.redrawQueued(1) == first);  // kept again by the first
+    CHECK(m.reused() == 2);
   }
 }
 
@@ -899,12 +902,14 @@ TEST_CASE("a draw that clipped a triangle keeps no setups", "[raster][reuse]") {
   Framebuffer fb(16, 16);
   const RenderState s = coverageCountingState(fb);
   std::vector<ClipVertex> v = windowTriangles(s.viewport, {{1, 1, 0.5}, {14, 1, 0.5}, {1, 14, 0.5}});
-  SetupReuse inside, crossing;
   Renderer r(fb);
-  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = nullptr, .tag = 0}, &inside);
-  CHECK(inside.holdsSetups());
-  v[2].position.z = -2.0 * v[2].position.w;  // behind the near plane
-  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = nullptr, .tag = 0}, &crossing);
-  CHECK_FALSE(crossing.holdsSetups());
-  CHECK(r.stats().trianglesClipped == 1);
+  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = nullptr, .tag = 0});
+  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = nullptr, .tag = 0});
+  CHECK(r.drawsReusingSetups() == 1);
+  std::vector<ClipVertex> crossing = v;
+  crossing[2].position.z = -2.0 * crossing[2].position.w;  // behind the near plane
+  r.draw({.state = &s, .vertices = crossing, .indices = {}, .shader = nullptr, .tag = 0});
+  r.draw({.state = &s, .vertices = crossing, .indices = {}, .shader = nullptr, .tag = 0});
+  CHECK(r.drawsReusingSetups() == 1);
+  CHECK(r.stats().trianglesClipped == 2);
 }

@@ -10,11 +10,17 @@
 #include <catch2/catch.hpp>
 
 #include "exec/row_work.h"
+#include "gl/fragment_shader.h"
+#include "gl/lighting.h"
 
 using namespace shadowref;
 
 namespace {
 const Rect kRegion{0, 0, 100, 64};
+const ConstantColorShader constantShader({1.0, 0.5, 0.25, 1.0});
+const ColorVaryingShader colorShader;
+const GouraudShader gouraudShader;
+const PerPixelLightingShader perPixelShader(LightingSetup{});
 
 SetupBounds box(int minX, int minY, int maxX, int maxY) { return {minX, minY, maxX, maxY}; }
 
@@ -285,6 +291,16 @@ TEST_CASE("rows of costlier fragments get fewer of a band's rows", "[raster][ban
   // Upper fragments three times as costly: 13504 in all, 3/5 of it 8102.4; rows 0 … 32 are
   // 3552 + 373, then 309 a row: reached after row 46 (8251).
   CHECK(firstBandEnd(3 * kPlainFragmentWork) == 47);
+}
+
+TEST_CASE("a shader's fragments weigh by what the shader interface tells of them", "[raster][bands]") {
+  // No colour, a constant one, or at most four varyings (a colour interpolated): a plain fragment.
+  // More varyings (position and normal, lit per fragment): three plain ones.
+  CHECK(fragmentWorkOf(nullptr) == kPlainFragmentWork);
+  CHECK(fragmentWorkOf(&constantShader) == kPlainFragmentWork);
+  CHECK(fragmentWorkOf(&colorShader) == kPlainFragmentWork);
+  CHECK(fragmentWorkOf(&gouraudShader) == kPlainFragmentWork);
+  CHECK(fragmentWorkOf(&perPixelShader) == 3 * kPlainFragmentWork);
 }
 
 TEST_CASE("rows whose pixels a stencil test stops weigh down to a quarter", "[raster][bands]") {

@@ -2,13 +2,13 @@
 
 #include <vector>
 
-#include "exec/renderer.h"
+#include "gl/pipeline.h"
 
 namespace shadowref::extremes {
 
 uint32_t depthCode(const glm::dmat4& projection, double distance, DepthFormat format) {
   Framebuffer fb(1, 1, format);
-  Renderer renderer(fb);
+  const auto pipeline = makePipeline(PipelineKind::Fast, fb);
   RenderState state;
   state.viewport = Viewport{0, 0, 1, 1, 0.0, 1.0};
   state.clipFar = false;  // the far plane itself (z_w = 1) is a depth we want to read
@@ -22,8 +22,8 @@ uint32_t depthCode(const glm::dmat4& projection, double distance, DepthFormat fo
   DrawCall call;
   call.state = &state;
   call.vertices = quad;
-  renderer.draw(call);
-  return fb.depthCodes()[0];
+  pipeline->draw(call);
+  return pipeline->framebuffer().depthCodes()[0];
 }
 
 }  // namespace shadowref::extremes

@@ -18,7 +18,7 @@
 #include "extremes/depth_code.h"
 #include "extremes/extreme_scene.h"
 #include "gl/projection.h"
-#include "exec/renderer.h"
+#include "gl/pipeline.h"
 
 using namespace shadowref;
 using namespace shadowref::extremes;
@@ -132,7 +132,7 @@ TEST_CASE("P_inf (epsilon = 0) puts every point at infinity at depth exactly 1, 
   // until stored, so epsilon = 0 is safe). With epsilon the back cap passes LESS against a cleared
   // 1.0, which z-fail counting must then not rely on.
   Framebuffer fb(32, 32);
-  Renderer renderer(fb);
+  const auto pipeline = makePipeline(PipelineKind::Fast, fb);
   RenderState state;
   state.viewport = Viewport{0, 0, 32, 32, 0.0, 1.0};
   state.clipFar = false;
@@ -144,16 +144,18 @@ TEST_CASE("P_inf (epsilon = 0) puts every point at infinity at depth exactly 1, 
     const glm::dvec4 directions[3] = {{-3.0, -2.0, -1.0, 0.0}, {3.0, -2.5, -1.3, 0.0}, {0.2, 3.0, -0.7, 0.0}};
     std::vector<ClipVertex> triangle(3);
     for (int i = 0; i < 3; ++i) triangle[i].position = projection * directions[i];
-    fb.ensureDepth();
-    std::fill(fb.depthCodes().begin(), fb.depthCodes().end(), 0u);  // so "not drawn" cannot pass as depth 1
+    Framebuffer& buffers = pipeline->framebuffer();
+    buffers.ensureDepth();
+    std::fill(buffers.depthCodes().begin(), buffers.depthCodes().end(), 0u);  // so "not drawn" cannot pass as depth 1
     DrawCall call;
     call.state = &state;
     call.vertices = triangle;
-    renderer.draw(call);
-    const uint32_t expected = fb.depthCodec().encode(1.0 - epsilon / 2.0);
+    pipeline->draw(call);
+    const Framebuffer& drawn = pipeline->framebuffer();
+    const uint32_t expected = drawn.depthCodec().encode(1.0 - epsilon / 2.0);
     size_t exact = 0;
-    for (uint32_t code : fb.depthCodes()) exact += code == expected;
-    INFO("epsilon " << epsilon << ": " << exact << " of " << fb.depthCodes().size() << " pixels at the expected depth");
-    CHECK(exact == fb.depthCodes().size());  // the triangle covers the whole 32 x 32 view
+    for (uint32_t code : drawn.depthCodes()) exact += code == expected;
+    INFO("epsilon " << epsilon << ": " << exact << " of " << drawn.depthCodes().size() << " pixels at the expected depth");
+    CHECK(exact == drawn.depthCodes().size());  // the triangle covers the whole 32 x 32 view
   }
 }

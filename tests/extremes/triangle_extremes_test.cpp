@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "gl/pipeline.h"
 #include "support/raster_harness.h"
 
 using namespace shadowref;
@@ -37,16 +38,17 @@ int wrongPixels(const Framebuffer& fb, Expected&& expected) {
 TEST_CASE("Degenerate triangles (a point, collinear along pixel centres, repeated vertices) cover no pixel",
           "[extremes]") {
   Framebuffer fb(kSize, kSize);
-  Renderer renderer(fb);
+  const auto pipeline = makePipeline(PipelineKind::Fast, fb);
   const RenderState state = coverageCountingState(fb);
   const Viewport& vp = state.viewport;
-  draw(renderer, state,
-       windowTriangles(vp, {{10.5, 10.5, 0.5}, {10.5, 10.5, 0.5}, {10.5, 10.5, 0.5},     // a point on a centre
-                            {2.5, 20.5, 0.5}, {30.5, 20.5, 0.5}, {60.5, 20.5, 0.5},      // along a row of centres
-                            {3.5, 3.5, 0.5}, {40.5, 40.5, 0.5}, {20.5, 20.5, 0.5},       // along the diagonal
-                            {5.0, 50.0, 0.5}, {50.0, 5.0, 0.5}, {5.0, 50.0, 0.5}}));     // two equal corners
-  CHECK(renderer.stats().fragments == 0);
-  CHECK(wrongPixels(fb, [](int, int) { return 0; }) == 0);
+  const std::vector<ClipVertex> triangles =
+      windowTriangles(vp, {{10.5, 10.5, 0.5}, {10.5, 10.5, 0.5}, {10.5, 10.5, 0.5},     // a point on a centre
+                           {2.5, 20.5, 0.5}, {30.5, 20.5, 0.5}, {60.5, 20.5, 0.5},      // along a row of centres
+                           {3.5, 3.5, 0.5}, {40.5, 40.5, 0.5}, {20.5, 20.5, 0.5},       // along the diagonal
+                           {5.0, 50.0, 0.5}, {50.0, 5.0, 0.5}, {5.0, 50.0, 0.5}});      // two equal corners
+  draw(*pipeline, state, triangles);
+  CHECK(wrongPixels(pipeline->framebuffer(), [](int, int) { return 0; }) == 0);
+  CHECK(pipeline->stats().fragments == 0);
 }
 
 TEST_CASE("A fan of sliver triangles (thousandths of a pixel wide) covers its square exactly once", "[extremes]") {
@@ -56,7 +58,7 @@ TEST_CASE("A fan of sliver triangles (thousandths of a pixel wide) covers its sq
   constexpr int kPerSide = 48000;  // 1/1000 pixel along the rim
 #endif
   Framebuffer fb(kSize, kSize);
-  Renderer renderer(fb);
+  const auto pipeline = makePipeline(PipelineKind::Fast, fb);
   const RenderState state = coverageCountingState(fb);
   // The square [8, 56]^2 walked counter-clockwise; every rim step and the centre form a triangle.
   std::vector<glm::dvec2> rim;
@@ -71,8 +73,8 @@ TEST_CASE("A fan of sliver triangles (thousandths of a pixel wide) covers its sq
     const glm::dvec2& b = rim[(k + 1) % rim.size()];
     for (const glm::dvec2& p : {centre, a, b}) fan.push_back(windowVertex(state.viewport, p.x, p.y));
   }
-  draw(renderer, state, fan);
-  INFO(stencilPicture(fb));
+  draw(*pipeline, state, fan);
+  INFO(stencilPicture(pipeline->framebuffer()));
   CHECK(wrongPixels(fb, [](int x, int y) { return x >= 8 && x < 56 && y >= 8 && y < 56 ? 1 : 0; }) == 0);
 }
 
@@ -80,14 +82,14 @@ TEST_CASE("Huge triangles (corners at 1e25 in clip space) are clipped to the gua
           "diagonal through pixel centres cover every pixel exactly once", "[extremes]") {
   for (double h : {1e6, 1e15, 1e25, 1e300}) {
     Framebuffer fb(kSize, kSize);
-    Renderer renderer(fb);
+    const auto pipeline = makePipeline(PipelineKind::Fast, fb);
     const RenderState state = coverageCountingState(fb);
     // The diagonal x = y runs through the centres (i + 0.5, i + 0.5): the fill rule must give each
     // of them to exactly one of the two triangles, after both were cut at the same points.
-    draw(renderer, state,
-         {clip(-h, -h, 0, 1), clip(h, -h, 0, 1), clip(h, h, 0, 1), clip(-h, -h, 0, 1), clip(h, h, 0, 1),
-          clip(-h, h, 0, 1)});
-    INFO("corner " << h << "\n" << stencilPicture(fb));
+    const std::vector<ClipVertex> square = {clip(-h, -h, 0, 1), clip(h, -h, 0, 1), clip(h, h, 0, 1),
+                                            clip(-h, -h, 0, 1), clip(h, h, 0, 1),  clip(-h, h, 0, 1)};
+    draw(*pipeline, state, square);
+    INFO("corner " << h << "\n" << stencilPicture(pipeline->framebuffer()));
     CHECK(wrongPixels(fb, [](int, int) { return 1; }) == 0);
   }
 }
@@ -99,10 +101,11 @@ TEST_CASE("A vertex with w = 0 or |w| <= 1e-6 (a point at or near infinity) open
   // image, for smaller |w| by less. On 64 x 64: columns 16 .. 47, rows 16 .. 63.
   for (double w : {0.0, 1e-300, 1e-30, 1e-12, 1e-6, -1e-300, -1e-12, -1e-6}) {
     Framebuffer fb(kSize, kSize);
-    Renderer renderer(fb);
+    const auto pipeline = makePipeline(PipelineKind::Fast, fb);
     const RenderState state = coverageCountingState(fb);
-    draw(renderer, state, {clip(-0.5, -0.5, 0, 1), clip(0.5, -0.5, 0, 1), clip(0.0, 1.0, 0.0, w)});
-    INFO("w = " << w << "\n" << stencilPicture(fb));
+    const std::vector<ClipVertex> triangle = {clip(-0.5, -0.5, 0, 1), clip(0.5, -0.5, 0, 1), clip(0.0, 1.0, 0.0, w)};
+    draw(*pipeline, state, triangle);
+    INFO("w = " << w << "\n" << stencilPicture(pipeline->framebuffer()));
     CHECK(wrongPixels(fb, [](int x, int y) { return x >= 16 && x < 48 && y >= 16 ? 1 : 0; }) == 0);
   }
 }

@@ -233,25 +233,3 @@ TEST_CASE("the colour shaders' batch forms give shade()'s bits", "[raster][light
   }
 }
 
-TEST_CASE("per-pixel lighting weighs a fragment by its lights, their specular powers and spot cones",
-          "[raster][lighting][bands]") {
-  // In quarters of a plain fragment (what the bands' estimate reads): a plain fragment's 4, and for
-  // each light 4 more, 5 more for its specular power, 2 more for its spot cone.
-  LightingSetup setup;
-  setup.eye = kEye;
-  setup.material = material(false);
-  setup.material.specular = glm::dvec3(0.0);
-  setup.lights = {pointLight()};
-  CHECK(PerPixelLightingShader(setup).fragmentWork() == 8);
-  setup.material = material(false);  // specular 0.25
-  CHECK(PerPixelLightingShader(setup).fragmentWork() == 13);
-  PhongLight spot = pointLight();
-  spot.spotCosCutoff = 0.7;
-  setup.lights.push_back(spot);
-  CHECK(PerPixelLightingShader(setup).fragmentWork() == 13 + 11);
-  setup.lights.clear();  // the ambient term alone
-  CHECK(PerPixelLightingShader(setup).fragmentWork() == kPlainFragmentWork);
-  // Interpolated colours cost a plain fragment, whatever lit them.
-  CHECK(GouraudShader().fragmentWork() == kPlainFragmentWork);
-  CHECK(ColorVaryingShader().fragmentWork() == kPlainFragmentWork);
-}

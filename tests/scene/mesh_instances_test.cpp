@@ -53,18 +53,6 @@ TEST_CASE("instances flatten the node tree depth-first with world = parent * loc
   CHECK(inst[1].shadowMesh == nullptr);
   CHECK(inst[2].shadowMesh == scene.meshes[1].get());
   CHECK(inst[2].mesh == scene.meshes[0].get());
-
-  // Without paths (as frames ask for them): the same instances, every path empty.
-  const std::vector<Instance> bare = scene.instances(Scene::Paths::Omitted);
-  REQUIRE(bare.size() == inst.size());
-  for (size_t i = 0; i < inst.size(); ++i) {
-    CHECK(bare[i].path.empty());
-    CHECK(bare[i].mesh == inst[i].mesh);
-    CHECK(bare[i].shadowMesh == inst[i].shadowMesh);
-    CHECK(bare[i].world == inst[i].world);
-    CHECK(bare[i].worldBounds.min == inst[i].worldBounds.min);
-    CHECK(bare[i].worldBounds.max == inst[i].worldBounds.max);
-  }
 }
 
 TEST_CASE("world bounds of a rotated box enclose all eight transformed corners", "[mesh]") {

@@ -47,7 +47,9 @@ struct Measurement {
     all.push_back("shadow.map_size=" + std::to_string(size));
     const Scene s = loadWith(scene, all);
     RasterStats stats;
-    const auto shadow = buildLightShadow(s, s.instances(), makeCameraView(s), s.lights.at(0), trapezoidal, 0, stats);
+    Framebuffer frame(1, 1);  // the maps' pipelines are made like this one: on every core
+    const auto shadow = buildLightShadow(s, s.instances(), makeCameraView(s), s.lights.at(0), trapezoidal,
+                                         *makePipeline(PipelineKind::Fast, frame, 0), stats);
     const ShadowMapErrors e = countShadowErrors(*shadow, oracle->hitPoint, oracle->lit, oracle->hitMask);
     REQUIRE(e.points > 10000);
     return 100.0 * e.wrongFraction();

@@ -48,7 +48,9 @@ Scene makeScene(const std::string& light, const std::string& shadow = "{method: 
 
 std::unique_ptr<LightShadow> shadowOf(const Scene& scene, bool trapezoidal = false) {
   RasterStats stats;
-  return buildLightShadow(scene, scene.instances(), makeCameraView(scene), scene.lights.at(0), trapezoidal, 1, stats);
+  Framebuffer frame(1, 1);  // the maps' pipelines are made like this one
+  return buildLightShadow(scene, scene.instances(), makeCameraView(scene), scene.lights.at(0), trapezoidal,
+                          *makePipeline(PipelineKind::Fast, frame), stats);
 }
 
 // Ground points on a 1/64 grid (1/16 under AddressSanitizer, which CI runs too) offset by 1/128,

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "exec/renderer.h"
+#include "gl/pipeline.h"
 #include "scene/scene_loader.h"
 #include "shadow/facing.h"
 #include "shadow/frame_renderer.h"
@@ -119,16 +119,16 @@ PixelVector<uint8_t> countStencil(const Framebuffer& depthSource, const std::vec
   Framebuffer fb = depthSource;
   fb.ensureStencil();
   std::fill(fb.stencil().begin(), fb.stencil().end(), uint8_t(0));
-  Renderer renderer(fb, 0);
+  const auto pipeline = makePipeline(PipelineKind::Fast, fb, 0);
   for (const ClipVolume& v : volumes)
     for (const RenderState& state : states) {
       DrawCall call;
       call.state = &state;
       call.vertices = v.vertices;
       call.indices = v.indices;
-      renderer.draw(call);
+      pipeline->draw(call);
     }
-  return fb.stencil();
+  return pipeline->framebuffer().stencil();
 }
 
 std::vector<RenderState> counting(const RenderState& base, StencilCounting how, const Scene& scene) {

@@ -37,6 +37,11 @@ void draw(Renderer& renderer, const RenderState& state, const std::vector<ClipVe
   renderer.draw(call);
 }
 
+void draw(Pipeline& pipeline, const RenderState& state, const std::vector<ClipVertex>& vertices,
+          const FragmentShader* shader, uint32_t tag) {
+  pipeline.draw({.state = &state, .vertices = vertices, .indices = {}, .shader = shader, .tag = tag});
+}
+
 RenderState coverageCountingState(const Framebuffer& fb) {
   RenderState s = fullViewportState(fb);
   s.stencilTest = true;

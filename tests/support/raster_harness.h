@@ -18,6 +18,7 @@
 
 #include "gl/fragment_shader.h"
 #include "gl/framebuffer.h"
+#include "gl/pipeline.h"
 #include "gl/render_state.h"
 #include "exec/renderer.h"
 #include "gl/vertex.h"
@@ -39,6 +40,9 @@ std::vector<ClipVertex> windowRect(const Viewport& vp, double x0, double y0, dou
                                    double z = 0.5);
 
 void draw(Renderer& renderer, const RenderState& state, const std::vector<ClipVertex>& vertices,
+          const FragmentShader* shader = nullptr, uint32_t tag = 0);
+// The same through a pipeline: the draw borrows `state` and `vertices` until its pass ends.
+void draw(Pipeline& pipeline, const RenderState& state, const std::vector<ClipVertex>& vertices,
           const FragmentShader* shader = nullptr, uint32_t tag = 0);
 
 // A state that counts coverage: stencil test on, func ALWAYS, every op INCR on both faces (the

@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "exec/color_columns.h"
+#include "gl/color_columns.h"
 
 using namespace shadowref;
 
