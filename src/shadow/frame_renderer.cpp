@@ -7,9 +7,7 @@
 #include "exec/renderer.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
-#include "shadow/shadow_method.h"
-#include "shadow/shadow_map_renderer.h"
-#include "shadow/volume_renderer.h"
+#include "shadow/technique_registry.h"
 
 namespace shadowref {
 
@@ -58,22 +56,30 @@ std::string numberedPass(int& counter, const std::string& what) {
 }
 
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
-  const ShadowMethod method = options.method.value_or(scene.shadow.method);
+  const TechniqueList among = options.techniques.empty() ? techniques() : options.techniques;
+  const ShadowTechnique* technique = nullptr;
+  if (options.method.empty()) {
+    technique = &techniqueOf(scene.shadow, among);
+  } else {
+    technique = findTechnique(options.method, among);
+    if (!technique) throw std::invalid_argument("shadow method " + unknownTechniqueMessage(options.method, among));
+  }
   FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}};
   Renderer renderer(result.framebuffer, options.threads);
   if (options.observer) renderer.watchPixel(options.watchX, options.watchY, options.observer);
-  switch (method) {
-    case ShadowMethod::None: renderUnshadowed(scene, options, result, renderer); break;
-    case ShadowMethod::ZPass:
-    case ShadowMethod::ZFail:
-    case ShadowMethod::Auto: renderShadowVolumes(scene, method, options, result, renderer); break;
-    case ShadowMethod::ShadowMap:
-    case ShadowMethod::Trapezoidal: renderShadowMaps(scene, method, options, result, renderer); break;
-    default:
-      throw std::runtime_error(std::string("shadow method '") + name(method) + "' is not available in this build");
-  }
+  technique->render(scene, options, result, renderer);
   result.stats += renderer.stats();
   return result;
 }
+
+// The technique of this file (technique_registry.cpp lists it).
+extern const ShadowTechnique kUnshadowedTechnique{
+    .name = "none",
+    .summary = "no shadows: every light in one lit pass",
+    .settings = {},
+    .countsInStencil = false,
+    .render = renderUnshadowed,
+    .describe = nullptr,
+};
 
 }  // namespace shadowref
