@@ -7,6 +7,7 @@
 
 #include "gl/clear.h"
 #include "gl/fragment_shader.h"
+#include "scene/scene_sections.h"
 #include "shadow/draw_tag.h"
 #include "shadow/facing.h"
 #include "shadow/occlusion_pyramid.h"
@@ -16,7 +17,6 @@
 #include "shadow/soft_lights.h"
 #include "shadow/stencil_counting.h"
 #include "shadow/technique.h"
-#include "scene/scene_sections.h"
 
 namespace shadowref {
 
