@@ -16,7 +16,6 @@
 #include "shadow/light_view.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
-#include "shadow/shadow_method.h"
 #include "shadow/shadow_volume.h"
 #include "shadow/soft_lights.h"
 #include "shadow/stencil_counting.h"
@@ -376,7 +375,7 @@ MeshBuffers upload(const GlFunctions& gl, const Mesh& mesh, bool withNormals) {
 
 struct MesaFrameRenderer::Impl {
   const Scene& scene;
-  ShadowMethod method;
+  std::string method;
   MesaLighting lighting;
   GlFunctions gl;
   std::array<PerPixelProgram, kMaxLights + 1> programs;  // by number of lights
@@ -389,7 +388,7 @@ struct MesaFrameRenderer::Impl {
   ShadowVolumeWorkspace workspace;
   GLuint mapTexture = 0, mapFramebuffer = 0;
 
-  Impl(const Scene& s, ShadowMethod m, MesaLighting shading) : scene(s), method(m), lighting(shading) {
+  Impl(const Scene& s, std::string_view m, MesaLighting shading) : scene(s), method(m), lighting(shading) {
     // An empty scenario of the scene's size: the harness creates that context and leaves it
     // current; every call below goes to it.
     conformance::Scenario empty;
@@ -398,9 +397,9 @@ struct MesaFrameRenderer::Impl {
     empty.height = scene.height;
     conformance::renderWithMesa(empty);
     gl = loadFunctions();
-    const bool volumes = method == ShadowMethod::ZPass || method == ShadowMethod::ZFail;
-    if (!volumes && method != ShadowMethod::ShadowMap)
-      throw std::runtime_error(std::string("vs-mesa: the GL side draws zpass, zfail and shadowmap, not ") + name(method));
+    const bool volumes = method == "zpass" || method == "zfail";
+    if (!volumes && method != "shadowmap")
+      throw std::runtime_error(std::string("vs-mesa: the GL side draws zpass, zfail and shadowmap, not ") + method);
     view = makeCameraView(scene, volumes);
     instances = scene.instances();
     for (const Instance& inst : instances) {
@@ -409,7 +408,7 @@ struct MesaFrameRenderer::Impl {
     }
     for (const Light& light : scene.lights)
       for (const Light& l : expandSoftLight(light)) lights.push_back(l);
-    if (method == ShadowMethod::ShadowMap) createShadowMap();
+    if (method == "shadowmap") createShadowMap();
     // All nine now: a shader error is reported here, before any frame (an exception out of a frame
     // left Mesa crashing in OSMesaDestroyContext at exit), and no frame pays for a compile.
     if (lighting == MesaLighting::PerPixel)
@@ -486,7 +485,7 @@ struct MesaFrameRenderer::Impl {
   // material (shadowref's camera pass lights a Gouraud material per vertex; the per-pixel pairs of
   // bench/vs-mesa draw scenes whose shadow-mapped materials are all per pixel).
   void drawLitPass(const RenderState& state, const std::vector<const Light*>& lit, bool includeAmbient) {
-    const bool shadowMapped = method == ShadowMethod::ShadowMap;
+    const bool shadowMapped = method == "shadowmap";
     glEnable(GL_LIGHTING);
     setGlobalAmbient(includeAmbient ? scene.ambient : glm::dvec3(0.0));
     const PerPixelProgram* bound = nullptr;  // nullptr: fixed function
@@ -516,7 +515,7 @@ struct MesaFrameRenderer::Impl {
   // life: the camera, the sampler's unit, the compare-fail value.
   void buildProgram(int lightCount) {
     PerPixelProgram& p = programs.at(size_t(lightCount));
-    p = buildPerPixelProgram(gl, lightCount, method == ShadowMethod::ShadowMap);
+    p = buildPerPixelProgram(gl, lightCount, method == "shadowmap");
     gl.useProgram(p.program);
     uniformVec3(gl, p.eye, view.eye);
     gl.uniform1i(p.shadowMap, 0);  // texture unit 0
@@ -604,7 +603,7 @@ struct MesaFrameRenderer::Impl {
 
   // Step 2 of volume_renderer.cpp: every caster's volume, rebuilt for this light this frame.
   void drawVolumePass(const RenderState& base, const Light& light) {
-    const StencilCounting how = method == ShadowMethod::ZFail ? StencilCounting::ZFail : StencilCounting::ZPass;
+    const StencilCounting how = method == "zfail" ? StencilCounting::ZFail : StencilCounting::ZPass;
     const std::vector<RenderState> states =
         volumePassStates(base, how, CountingOptions{scene.shadow.twoSidedStencil, scene.shadow.wrapOps});
     glDisableClientState(GL_NORMAL_ARRAY);
@@ -715,13 +714,13 @@ const char* lightingName(MesaLighting lighting) {
   return lighting == MesaLighting::PerPixel ? "perpixel" : "fixed";
 }
 
-MesaFrameRenderer::MesaFrameRenderer(const Scene& scene, ShadowMethod method, MesaLighting lighting)
+MesaFrameRenderer::MesaFrameRenderer(const Scene& scene, std::string_view method, MesaLighting lighting)
     : impl_(std::make_unique<Impl>(scene, method, lighting)) {}
 
 MesaFrameRenderer::~MesaFrameRenderer() = default;
 
 void MesaFrameRenderer::render() {
-  if (impl_->method == ShadowMethod::ShadowMap) impl_->renderShadowMap();
+  if (impl_->method == "shadowmap") impl_->renderShadowMap();
   else impl_->renderVolumes();
   glFinish();
   if (glGetError() != GL_NO_ERROR) throw std::runtime_error("vs-mesa: GL error in the frame");

@@ -42,7 +42,7 @@ class MesaFrameRenderer {
   // Creates (through the conformance harness) and makes current an OSMesa context of the scene's
   // size. Throws std::runtime_error for a method or light type the GL side does not draw, and for
   // a shader that does not compile or link (with the info log).
-  explicit MesaFrameRenderer(const Scene& scene, ShadowMethod method,
+  explicit MesaFrameRenderer(const Scene& scene, std::string_view method,
                              MesaLighting lighting = MesaLighting::FixedFunction);
   ~MesaFrameRenderer();
   MesaFrameRenderer(const MesaFrameRenderer&) = delete;

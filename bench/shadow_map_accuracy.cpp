@@ -169,7 +169,7 @@ int run(int argc, char** argv) {
             writeErrorImage(*shadow, o, mask, stem + "-errors.png");
             if (a.name == "offset") {
               FrameOptions fo;
-              fo.method = trapezoidal ? ShadowMethod::Trapezoidal : ShadowMethod::ShadowMap;
+              fo.method = trapezoidal ? "tsm" : "shadowmap";
               fo.threads = 0;
               writePng(renderFrame(scene, fo).framebuffer, stem + ".png");
             }

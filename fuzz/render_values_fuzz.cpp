@@ -16,6 +16,7 @@
 
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
+#include "shadow/technique_registry.h"
 
 namespace {
 
@@ -85,11 +86,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const shadowref::SceneError&) {
     return 0;
   }
-  for (const shadowref::ShadowMethod method :
-       {shadowref::ShadowMethod::None, shadowref::ShadowMethod::ZPass, shadowref::ShadowMethod::ZFail,
-        shadowref::ShadowMethod::Auto, shadowref::ShadowMethod::ShadowMap, shadowref::ShadowMethod::Trapezoidal}) {
+  for (const shadowref::ShadowTechnique* technique : shadowref::techniques()) {
     shadowref::FrameOptions options;
-    options.method = method;
+    options.method = technique->name;
     options.threads = 1;
     try {
       shadowref::renderFrame(scene, options);

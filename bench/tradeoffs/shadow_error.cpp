@@ -27,7 +27,7 @@ Plane brightness(const Framebuffer& fb) {
   return out;
 }
 
-Plane renderBrightness(const Scene& scene, ShadowMethod method, int threads) {
+Plane renderBrightness(const Scene& scene, std::string_view method, int threads) {
   FrameOptions options;
   options.method = method;
   options.threads = threads;
@@ -39,17 +39,17 @@ Plane unshadowedWith(const Scene& scene, int only, int threads) {
   Scene copy = scene;
   for (size_t i = 0; i < copy.lights.size(); ++i)
     if (static_cast<int>(i) != only) copy.lights[i].color = glm::dvec3(0.0);
-  return renderBrightness(copy, ShadowMethod::None, threads);
+  return renderBrightness(copy, "none", threads);
 }
 
-bool isVolumeMethod(ShadowMethod m) {
-  return m == ShadowMethod::ZPass || m == ShadowMethod::ZFail || m == ShadowMethod::Auto;
+bool isVolumeMethod(std::string_view m) {
+  return m == "zpass" || m == "zfail" || m == "auto";
 }
 
 // Shadow volumes: a pixel sees an (expanded) light where its stencil count is 0; a soft light's
 // visibility is the share of its lights that see it (each carries colour / count,
 // [Kuhn 2016, §3.6]).
-std::vector<Plane> volumeVisibility(const Scene& scene, ShadowMethod method, int threads) {
+std::vector<Plane> volumeVisibility(const Scene& scene, std::string_view method, int threads) {
   FrameOptions options;
   options.method = method;
   options.threads = threads;
@@ -75,7 +75,7 @@ std::vector<Plane> volumeVisibility(const Scene& scene, ShadowMethod method, int
 // Shadow maps: with the compare-fail value set to 0 a shadowed fragment is black, and the frame is
 // (ambient + light) · visibility (shadow_map_renderer.cpp), so visibility = frame / unshadowed.
 // PCF and the accumulated area light give the fractions in between. One light only.
-Plane mapVisibility(const Scene& scene, ShadowMethod method, const Plane& unshadowed, int threads) {
+Plane mapVisibility(const Scene& scene, std::string_view method, const Plane& unshadowed, int threads) {
   if (scene.lights.size() != 1) throw std::runtime_error("shadow-map error needs a scene with one light");
   Scene copy = scene;
   copy.shadow.compareFail = 0.0;
@@ -110,7 +110,7 @@ const std::vector<float>& cachedAreaLightVisibility(const Scene& scene, const Li
 
 }  // namespace
 
-ShadowError measureShadowError(const Scene& scene, ShadowMethod method, const ErrorSettings& settings) {
+ShadowError measureShadowError(const Scene& scene, std::string_view method, const ErrorSettings& settings) {
   const int threads = settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const size_t lights = scene.lights.size();
   const Plane ambientOnly = unshadowedWith(scene, -1, threads);
@@ -118,7 +118,7 @@ ShadowError measureShadowError(const Scene& scene, ShadowMethod method, const Er
   for (size_t i = 0; i < lights; ++i) unshadowed.push_back(unshadowedWith(scene, static_cast<int>(i), threads));
 
   std::vector<Plane> rendered;
-  if (method == ShadowMethod::None) rendered.assign(lights, Plane(ambientOnly.size(), 1.0f));
+  if (method == "none") rendered.assign(lights, Plane(ambientOnly.size(), 1.0f));
   else if (isVolumeMethod(method)) rendered = volumeVisibility(scene, method, threads);
   else rendered.push_back(mapVisibility(scene, method, unshadowed[0], threads));
 

@@ -31,6 +31,6 @@ struct ErrorSettings {
 // kContributionThreshold in mean RGB). Elsewhere a shadow, right or wrong, cannot be seen.
 inline constexpr float kContributionThreshold = 0.02f;
 
-ShadowError measureShadowError(const Scene& scene, ShadowMethod method, const ErrorSettings& settings);
+ShadowError measureShadowError(const Scene& scene, std::string_view method, const ErrorSettings& settings);
 
 }  // namespace shadowref::bench

@@ -15,7 +15,7 @@
 #include "cli/timing_stats.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
-#include "shadow/shadow_method.h"
+#include "shadow/technique_registry.h"
 
 namespace shadowref::bench {
 
@@ -105,8 +105,8 @@ int probeMain(const std::vector<std::string>& args) {
     load.overrides.assign(args.begin() + 4, args.end());
     const Scene scene = loadScene(args[0], load);
     FrameOptions options;
-    options.method = parseShadowMethod(args[1]);
-    if (!options.method) throw std::runtime_error("unknown method " + args[1]);
+    if (!findTechnique(args[1])) throw std::runtime_error("unknown method " + args[1]);
+    options.method = args[1];
     options.threads = std::stoi(args[2]);
     const int frames = std::stoi(args[3]);
     renderFrame(scene, options);  // warm-up: page in buffers and code

@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "scene/scene_loader.h"
-#include "shadow/shadow_method.h"
 #include "shadow/soft_lights.h"
 #include "tradeoffs/experiments.h"
 #include "tradeoffs/report.h"
@@ -96,7 +95,7 @@ Row measureError(const Experiment& e, const Args& a) {
     LoadOptions load;
     load.overrides = e.overrides;
     const Scene scene = loadScene(file, load);
-    const ShadowMethod method = *parseShadowMethod(e.method);
+    const std::string_view method = e.method;
     for (const Light& l : scene.lights) row.lightsRendered += static_cast<int>(expandSoftLight(l).size());
     ErrorSettings settings;
     settings.reference = e.reference;
@@ -104,7 +103,7 @@ Row measureError(const Experiment& e, const Args& a) {
     settings.referenceSamples = a.samples;
     settings.threads = 0;
     settings.forceInfiniteOracle =
-        method == ShadowMethod::ZPass || method == ShadowMethod::ZFail || method == ShadowMethod::Auto;
+        method == "zpass" || method == "zfail" || method == "auto";
     row.error = measureShadowError(scene, method, settings);
   } catch (const std::exception& ex) {
     row.errorMessage = ex.what();

@@ -12,7 +12,6 @@
 #include "exec/thread_pool.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/frames_in_turn.h"
-#include "shadow/shadow_method.h"
 
 namespace shadowref::cli {
 
@@ -86,7 +85,7 @@ void printRuns(const std::vector<ThreadPool::RunRecord>& records, const std::vec
 void addBenchCommand(CLI::App& app, BenchArgs& args) {
   CLI::App* bench = app.add_subcommand("bench", "Render a scene several times; print the median time per frame and pass, and with threads the time in and outside the pool's runs");
   bench->add_option("scene", args.scene.scene, "Scene file (YAML); omitted: the built-in room");
-  bench->add_option("--method", args.method, "Shadow method: " + shadowMethodNames());
+  bench->add_option("--method", args.method, methodHelp());
   bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(wholeNumberIn(1, 10000));
   bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(wholeNumberIn(0, 256));
   bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400");
@@ -152,8 +151,9 @@ int runBench(const BenchArgs& args) {
   if (!scene) return kBadInput;
   FrameOptions options;
   options.threads = args.threads;
-  if (!parseMethodOrReport(args.method, options.method)) return kBadInput;
-  const ShadowMethod method = options.method.value_or(scene->shadow.method);
+  if (!checkMethodOrReport(args.method)) return kBadInput;
+  options.method = args.method;
+  const char* const method = options.method.empty() ? scene->shadow.method.c_str() : options.method.c_str();
   FrameTimes times;
   const int threads = args.threads == 0 ? defaultThreadCount() : args.threads;
   if (args.alternate) {
@@ -162,7 +162,7 @@ int runBench(const BenchArgs& args) {
                 << (args.threads == 0 ? " (0 means this machine's one core)" : "") << '\n';
       return kBadInput;
     }
-    return runAlternating(args, *scene, options, threads, shadowref::name(method));
+    return runAlternating(args, *scene, options, threads, method);
   }
   ThreadPool* pool = threadPoolForThisThread(threads);  // the one renderFrame's renderers use
   ThreadPool::Times poolTimes;
@@ -189,11 +189,11 @@ int runBench(const BenchArgs& args) {
   }
   const std::string name = sceneName(args);
   if (args.csv) {
-    std::printf("%s,%s,%d,%d,%d,%d,%.3f\n", name.c_str(), shadowref::name(method), threads, scene->width, scene->height,
+    std::printf("%s,%s,%d,%d,%d,%d,%.3f\n", name.c_str(), method, threads, scene->width, scene->height,
                 args.frames, median(times.frameMs));
     return kSuccess;
   }
-  std::printf("%s, method %s, %dx%d, %d thread%s, %d frames\n", name.c_str(), shadowref::name(method), scene->width,
+  std::printf("%s, method %s, %dx%d, %d thread%s, %d frames\n", name.c_str(), method, scene->width,
               scene->height, threads, threads == 1 ? "" : "s", args.frames);
   std::printf("  frame (median)            %9.3f ms\n", median(times.frameMs));
   for (const std::string& pass : times.passOrder)

@@ -8,7 +8,7 @@
 
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
-#include "shadow/shadow_method.h"
+#include "shadow/technique_registry.h"
 
 namespace shadowref::cli {
 
@@ -16,13 +16,16 @@ std::optional<Scene> loadSceneOrReport(const SceneArgs& args) {
   try {
     LoadOptions options;
     options.overrides = args.overrides;
-    if (args.scene.empty()) {
-      // The built-in default is the room of [Kuhn 2016, Fig. 5.1] with z-fail shadow volumes
-      // (scenes/room.yaml says the same at length), as a two-line scene, so that -D overrides work
-      // on it exactly as on a file.
-      return loadSceneFromString("generator: {type: room}\nshadow: {method: zfail}\n", "<builtin:room>", options);
-    }
-    return loadScene(args.scene, options);
+    // The built-in default is the room of [Kuhn 2016, Fig. 5.1] with z-fail shadow volumes
+    // (scenes/room.yaml says the same at length), as a two-line scene, so that -D overrides work
+    // on it exactly as on a file.
+    Scene scene = args.scene.empty()
+                      ? loadSceneFromString("generator: {type: room}\nshadow: {method: zfail}\n", "<builtin:room>", options)
+                      : loadScene(args.scene, options);
+    // The loader takes any name; the registry knows the techniques. Checked here, so that
+    // `check` and `info` report an unknown one as a render would, at the same file:line:col.
+    techniqueOf(scene.shadow);
+    return scene;
   } catch (const SceneError& e) {
     std::cerr << e.what() << '\n';
   } catch (const std::exception& e) {
@@ -31,13 +34,13 @@ std::optional<Scene> loadSceneOrReport(const SceneArgs& args) {
   return std::nullopt;
 }
 
-bool parseMethodOrReport(const std::string& text, std::optional<ShadowMethod>& method) {
-  if (text.empty()) return true;
-  method = parseShadowMethod(text);
-  if (method) return true;
-  std::cerr << "--method: unknown method '" << text << "' (expected one of " << shadowMethodNames() << ")\n";
+bool checkMethodOrReport(const std::string& text) {
+  if (text.empty() || findTechnique(text)) return true;
+  std::cerr << "--method: unknown method '" << text << "' (expected one of " << techniqueNames() << ")\n";
   return false;
 }
+
+std::string methodHelp() { return "Shadow method: " + techniqueNames(); }
 
 std::string defaultOutputPath(const std::string& scenePath, const std::string& extension) {
   const std::string stem = scenePath.empty() ? "default" : std::filesystem::path(scenePath).stem().string();

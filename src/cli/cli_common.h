@@ -22,12 +22,16 @@ struct SceneArgs {
   std::vector<std::string> overrides;  // -D key=value
 };
 
-// Loads the scene (or builds the default one) and applies overrides. A SceneError is printed as
-// "file:line:col: message" on stderr and returns nullopt.
+// Loads the scene (or builds the default one), applies overrides and checks that its shadow.method
+// names a technique. A SceneError is printed as "file:line:col: message" on stderr and returns
+// nullopt.
 std::optional<Scene> loadSceneOrReport(const SceneArgs& args);
 
 // --method: empty keeps the scene's method; an unknown name is reported on stderr (false).
-bool parseMethodOrReport(const std::string& text, std::optional<ShadowMethod>& method);
+bool checkMethodOrReport(const std::string& text);
+
+// "Shadow method: none, zpass, ...": --method's help, from the registry.
+std::string methodHelp();
 
 // "out/room.png" for "scenes/room.yaml", "out/default.png" for the built-in scene.
 std::string defaultOutputPath(const std::string& scenePath, const std::string& extension);

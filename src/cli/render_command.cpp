@@ -15,8 +15,8 @@
 #include "scene/checked_arithmetic.h"
 #include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
-#include "shadow/shadow_method.h"
 #include "shadow/soft_lights.h"
+#include "shadow/technique_registry.h"
 
 namespace shadowref::cli {
 
@@ -121,7 +121,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_option("-o,--output", args.outputs,
                      "Output image, .png (8-bit colour) or .exr (R,G,B,A float, Z float, stencil uint32); "
                      "repeatable. Default: out/<scene>.png");
-  render->add_option("--method", args.method, "Shadow method: " + shadowMethodNames());
+  render->add_option("--method", args.method, methodHelp());
   render->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D camera.near=0.001")
       ->take_all()
       ->allow_extra_args(false);
@@ -150,7 +150,8 @@ int runRender(const RenderArgs& args) {
   // Every flag is checked here, before the render: bad usage exits 2 with nothing written.
   FrameOptions options;
   options.threads = args.threads;
-  if (!parseMethodOrReport(args.method, options.method)) return kBadInput;
+  if (!checkMethodOrReport(args.method)) return kBadInput;
+  options.method = args.method;
   std::vector<std::string> outputs = args.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
   bool anyExr = false;
@@ -200,13 +201,13 @@ int runRender(const RenderArgs& args) {
   // light's counts at once: their number is bounded before anything is rendered.
   options.keepStencil = (dumpStencil || !region.empty()) && anyExr;
   if (options.keepStencil) {
-    const ShadowMethod method = options.method.value_or(scene->shadow.method);
-    const bool volumes = method == ShadowMethod::ZPass || method == ShadowMethod::ZFail || method == ShadowMethod::Auto;
+    const bool countsInStencil =
+        (options.method.empty() ? techniqueOf(scene->shadow) : *findTechnique(options.method)).countsInStencil;
     uint64_t lights = 0;
     for (const Light& light : scene->lights) lights += expandSoftLight(light).size();
     const std::optional<uint64_t> counts =
         checkedMul(checkedMul(uint64_t(scene->width), uint64_t(scene->height)).value_or(UINT64_MAX), lights);
-    if (volumes && lights > 1 && (!counts || *counts > kMaxKeptStencilCounts)) {
+    if (countsInStencil && lights > 1 && (!counts || *counts > kMaxKeptStencilCounts)) {
       std::cerr << "--dump stencil with an .exr output: the EXR's per-light stencil channels would hold " << lights
                 << " lights x " << scene->width << "x" << scene->height << " counts, more than the limit of "
                 << kMaxKeptStencilCounts << " (2^27); drop the .exr output or the --dump, or render fewer lights or a "

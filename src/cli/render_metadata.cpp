@@ -2,14 +2,13 @@
 
 #include "cli/version_info.h"
 #include "gl/pipeline.h"
-#include "shadow/shadow_method.h"
 
 namespace shadowref::cli {
 
 OutputMetadata renderMetadata(const RenderArgs& args, const Scene& scene, const FrameOptions& options) {
   OutputMetadata m;
   m.software = softwareName();
-  m.method = name(options.method.value_or(scene.shadow.method));
+  m.method = options.method.empty() ? scene.shadow.method : options.method;
   // The file as named on the command line: the same command gives the same metadata anywhere.
   m.scene = args.scene.scene.empty() ? scene.sourceFile : args.scene.scene;
   if (!args.scene.scene.empty()) m.sceneSha1 = sha1OfFile(args.scene.scene);

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "scene/scene_info.h"
+#include "shadow/technique_registry.h"
 
 namespace shadowref::cli {
 
@@ -26,7 +27,7 @@ int runCheck(const SceneArgs& args) {
 int runInfo(const SceneArgs& args) {
   const std::optional<Scene> scene = loadSceneOrReport(args);
   if (!scene) return kBadInput;
-  std::cout << describeScene(*scene);
+  std::cout << describeScene(*scene, describeShadowSettings(scene->shadow));
   return kSuccess;
 }
 

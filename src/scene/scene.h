@@ -13,6 +13,7 @@
 
 #include "gl/framebuffer.h"
 #include "scene/mesh.h"
+#include "scene/scene_error.h"
 
 namespace shadowref {
 
@@ -71,12 +72,16 @@ struct Light {
   }
 };
 
-enum class ShadowMethod : uint8_t { None, ZPass, ZFail, Auto, ShadowMap, Trapezoidal };
 enum class SilhouetteAlgorithm : uint8_t { Kuhn, YenKwoon, Kilgard, Lengyel };
 
-// Parameters of the shadow algorithms; each issue that implements a method owns its fields.
+// Parameters of the shadow algorithms; each technique reads the fields its registry entry lists.
 struct ShadowSettings {
-  ShadowMethod method = ShadowMethod::None;
+  // The shadow technique, by the name it is registered under (src/shadow/technique_registry.h).
+  // The scene does not know the list: the name is looked up where the frame is rendered (and by
+  // the command line right after loading), and an unknown one is reported at `methodAt`, where
+  // the file or the -D override wrote it.
+  std::string method = "none";
+  SourceLocation methodAt;
   // Shadow volumes ([Kuhn 2016], [SV slides], [DSS article])
   SilhouetteAlgorithm silhouette = SilhouetteAlgorithm::Kuhn;
   bool twoSidedStencil = true;   // one pass with front/back stencil state, or two culled passes

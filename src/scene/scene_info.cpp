@@ -81,32 +81,9 @@ void describeLight(std::ostringstream& out, const Light& l) {
   out << "\n";
 }
 
-void describeShadow(std::ostringstream& out, const ShadowSettings& s) {
-  out << "shadow: " << enumName(shadowMethodNames(), s.method);
-  switch (s.method) {
-    case ShadowMethod::ZPass:
-    case ShadowMethod::ZFail:
-    case ShadowMethod::Auto:
-      out << ", silhouette " << enumName(silhouetteNames(), s.silhouette) << ", "
-          << (s.twoSidedStencil ? "two-sided stencil" : "two culled passes") << ", "
-          << (s.wrapOps ? "wrapping" : "saturating") << " stencil ops"
-          << (s.darkenComposite ? ", darken compositing" : "");
-      break;
-    case ShadowMethod::ShadowMap:
-    case ShadowMethod::Trapezoidal:
-      out << ", map " << s.mapSize << " x " << s.mapSize << ", offset " << num(s.offsetFactor) << " / "
-          << num(s.offsetUnits) << ", bias " << num(s.constantBias) << (s.backFacesOnly ? ", back faces only" : "")
-          << ", pcf " << s.pcf << ", compare fail " << num(s.compareFail);
-      if (s.method == ShadowMethod::Trapezoidal) out << ", focus region " << num(s.focusRegion);
-      break;
-    case ShadowMethod::None: break;
-  }
-  out << "\n";
-}
-
 }  // namespace
 
-std::string describeScene(const Scene& scene) {
+std::string describeScene(const Scene& scene, std::string_view shadowDetails) {
   std::ostringstream out;
   out << "scene: " << scene.sourceFile << "\n";
   out << "image: " << scene.width << " x " << scene.height << ", depth " << enumName(depthFormatNames(), scene.depthFormat)
@@ -115,7 +92,7 @@ std::string describeScene(const Scene& scene) {
   out << "camera: eye " << vec(c.eye) << ", target " << vec(c.target) << ", up " << vec(c.up) << ", fov "
       << num(c.fovYDegrees) << " deg, near " << num(c.nearPlane) << ", far " << num(c.farPlane) << "\n";
   out << "ambient " << vec(scene.ambient) << ", background " << vec(scene.background) << "\n";
-  describeShadow(out, scene.shadow);
+  out << "shadow: " << scene.shadow.method << (shadowDetails.empty() ? "" : ", ") << shadowDetails << "\n";
 
   out << "lights (" << scene.lights.size() << "):\n";
   for (const Light& l : scene.lights) describeLight(out, l);

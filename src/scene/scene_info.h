@@ -4,11 +4,15 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "scene/scene.h"
 
 namespace shadowref {
 
-std::string describeScene(const Scene& scene);
+// `shadowDetails` describes the settings the scene's shadow technique reads ("silhouette kuhn,
+// ..."); the technique knows which (describeShadowSettings in src/shadow/technique_registry.h),
+// the scene does not.
+std::string describeScene(const Scene& scene, std::string_view shadowDetails = {});
 
 }  // namespace shadowref

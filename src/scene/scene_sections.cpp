@@ -23,13 +23,6 @@ const EnumNames<ShadingModel>& shadingNames() {
   return names;
 }
 
-const EnumNames<ShadowMethod>& shadowMethodNames() {
-  static const EnumNames<ShadowMethod> names{
-      {"none", ShadowMethod::None},   {"zpass", ShadowMethod::ZPass},         {"zfail", ShadowMethod::ZFail},
-      {"auto", ShadowMethod::Auto},   {"shadowmap", ShadowMethod::ShadowMap}, {"tsm", ShadowMethod::Trapezoidal}};
-  return names;
-}
-
 const EnumNames<SilhouetteAlgorithm>& silhouetteNames() {
   static const EnumNames<SilhouetteAlgorithm> names{{"kuhn", SilhouetteAlgorithm::Kuhn},
                                                     {"yen_kwoon", SilhouetteAlgorithm::YenKwoon},
@@ -158,7 +151,9 @@ const std::vector<Field<ShadowSettings>>& shadowFields() {
   using S = ShadowSettings;
   static const std::vector<Field<S>> fields{
       {"method", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
-         s.method = readEnum(v, p, shadowMethodNames());
+         // Any name: the techniques are registered in src/shadow, which checks it (ShadowSettings).
+         s.method = readText(v, p);
+         s.methodAt = v.at;
        }},
       {"silhouette", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
          s.silhouette = readEnum(v, p, silhouetteNames());

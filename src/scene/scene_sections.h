@@ -22,7 +22,6 @@ void applyLimits(const YamlValue& map, ResourceLimits& limits, Provenance& where
 const EnumNames<LightType>& lightTypeNames();
 const EnumNames<SoftShape>& softShapeNames();
 const EnumNames<ShadingModel>& shadingNames();
-const EnumNames<ShadowMethod>& shadowMethodNames();
 const EnumNames<SilhouetteAlgorithm>& silhouetteNames();
 const EnumNames<DepthFormat>& depthFormatNames();
 

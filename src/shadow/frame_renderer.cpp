@@ -8,9 +8,7 @@
 #include "gl/pipeline.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
-#include "shadow/shadow_method.h"
-#include "shadow/shadow_map_renderer.h"
-#include "shadow/volume_renderer.h"
+#include "shadow/technique_registry.h"
 
 namespace shadowref {
 
@@ -59,25 +57,34 @@ std::string numberedPass(int& counter, const std::string& what) {
 }
 
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
-  const ShadowMethod method = options.method.value_or(scene.shadow.method);
-  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}};
-  const std::unique_ptr<Pipeline> pipeline = makePipeline(options.pipeline, result.framebuffer, options.threads);
-  if (!pipeline)
-    throw std::runtime_error(std::string("the ") + name(options.pipeline) + " pipeline is not available in this build");
-  if (options.observer) pipeline->watchPixel(options.watchX, options.watchY, options.observer);
-  switch (method) {
-    case ShadowMethod::None: renderUnshadowed(scene, options, result, *pipeline); break;
-    case ShadowMethod::ZPass:
-    case ShadowMethod::ZFail:
-    case ShadowMethod::Auto: renderShadowVolumes(scene, method, options, result, *pipeline); break;
-    case ShadowMethod::ShadowMap:
-    case ShadowMethod::Trapezoidal: renderShadowMaps(scene, method, options, result, *pipeline); break;
-    default:
-      throw std::runtime_error(std::string("shadow method '") + name(method) + "' is not available in this build");
+  const TechniqueList among = options.techniques.empty() ? techniques() : options.techniques;
+  const ShadowTechnique* technique = nullptr;
+  if (options.method.empty()) {
+    technique = &techniqueOf(scene.shadow, among);
+  } else {
+    technique = findTechnique(options.method, among);
+    if (!technique) throw std::invalid_argument("shadow method " + unknownTechniqueMessage(options.method, among));
   }
+  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}};
+  // The pixel history always runs on the reference: its events are the definition.
+  const PipelineKind kind = options.observer ? PipelineKind::Reference : options.pipeline;
+  const std::unique_ptr<Pipeline> pipeline = makePipeline(kind, result.framebuffer, options.threads);
+  if (!pipeline) throw std::runtime_error(std::string("the ") + name(kind) + " pipeline is not available in this build");
+  if (options.observer) pipeline->watchPixel(options.watchX, options.watchY, options.observer);
+  technique->render(scene, options, result, *pipeline);
   pipeline->endPass();  // before the result leaves: the framebuffer is complete
   result.stats += pipeline->stats();
   return result;
 }
+
+// The technique of this file (technique_registry.cpp lists it).
+extern const ShadowTechnique kUnshadowedTechnique{
+    .name = "none",
+    .summary = "no shadows: every light in one lit pass",
+    .settings = {},
+    .countsInStencil = false,
+    .render = renderUnshadowed,
+    .describe = nullptr,
+};
 
 }  // namespace shadowref

@@ -1,9 +1,11 @@
-// Renders one frame of a scene with its shadow method: the passes of the stencil shadow volumes
-// ([Kuhn 2016, §3.1, §4.2]) or of shadow mapping ([Hempe 2004, §3.1, §5.1]) in order.
+// Renders one frame of a scene with its shadow technique (technique_registry.h): the passes of the
+// stencil shadow volumes ([Kuhn 2016, §3.1, §4.2]) or of shadow mapping ([Hempe 2004, §3.1, §5.1])
+// in order.
 #pragma once
 
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,8 @@
 
 namespace shadowref {
 
+struct ShadowTechnique;
+
 // Teaching views of the volumes drawn over the finished frame.
 enum class VolumeViewMode : uint8_t {
   None,
@@ -24,7 +28,10 @@ enum class VolumeViewMode : uint8_t {
 };
 
 struct FrameOptions {
-  std::optional<ShadowMethod> method;  // overrides the scene's shadow.method
+  // A technique's name, overriding the scene's shadow.method; empty: the scene's.
+  std::string method;
+  // The techniques the name is looked up among; empty: the built-in ones. A test adds its own.
+  std::span<const ShadowTechnique* const> techniques;
   // The pipeline the passes draw through (gl/pipeline.h); both give the same bytes.
   PipelineKind pipeline = PipelineKind::Fast;
   // Rasterizer threads (0: all cores). Every buffer comes out byte-identical for any count.
@@ -64,7 +71,10 @@ struct FrameResult {
 // the --dump passes files sort as the passes ran.
 std::string numberedPass(int& counter, const std::string& what);
 
-// Throws std::runtime_error for a method or pipeline this build cannot render with.
+// Renders with the technique options.method or else scene.shadow.method names. An unknown name is
+// a SceneError at the scene's shadow.method (or std::invalid_argument for options.method), each
+// listing the names there are; std::runtime_error for a
+// technique or pipeline this build cannot render with.
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options = {});
 
 }  // namespace shadowref

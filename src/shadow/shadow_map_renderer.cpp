@@ -10,11 +10,13 @@
 #include "gl/clear.h"
 #include "gl/color_columns.h"
 #include "gl/lighting.h"
+#include "scene/scene_sections.h"
 #include "shadow/draw_tag.h"
 #include "shadow/light_shadow.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
 #include "shadow/soft_lights.h"
+#include "shadow/technique.h"
 #include "shadow/trapezoid_overlay.h"
 
 namespace shadowref {
@@ -267,12 +269,12 @@ void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
 
 }  // namespace
 
-void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
+void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions& options, FrameResult& result,
                       Pipeline& pipeline) {
   const SceneView view = makeCameraView(scene);
   const std::vector<Instance> instances = scene.instances();
   const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &pipeline);
-  const bool trapezoidal = method == ShadowMethod::Trapezoidal;
+  const bool trapezoidal = kind == ShadowMapKind::Trapezoidal;
 
   RenderState state;
   state.viewport = view.viewport;
@@ -317,5 +319,72 @@ void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOption
     if (options.onPass) options.onPass(numberedPass(passCounter, "return"), pipeline.framebuffer());
   }
 }
+
+// The techniques of this file (technique_registry.cpp lists them).
+namespace {
+
+constexpr TechniqueSetting kMapSettings[] = {
+    {"map_size", "8 to 8192"},
+    {"offset_factor", "a number"},
+    {"offset_units", "a number"},
+    {"bias", "a number"},
+    {"back_faces_only", "true or false"},
+    {"pcf", "1 to 15"},
+    {"compare_fail", "0 to 1"},
+};
+
+// TSM reads the same, and the focus region ([Hempe 2004, §4.1]).
+constexpr TechniqueSetting kTrapezoidalSettings[] = {
+    {"map_size", "8 to 8192"},
+    {"offset_factor", "a number"},
+    {"offset_units", "a number"},
+    {"bias", "a number"},
+    {"back_faces_only", "true or false"},
+    {"pcf", "1 to 15"},
+    {"compare_fail", "0 to 1"},
+    {"focus_region", "between 0 and 1 exclusive"},
+};
+
+std::string number(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%g", x);  // %g: the same text on every machine
+  return buf;
+}
+
+std::string describeMapSettings(const ShadowSettings& s) {
+  return "map " + std::to_string(s.mapSize) + " x " + std::to_string(s.mapSize) + ", offset " + number(s.offsetFactor) +
+         " / " + number(s.offsetUnits) + ", bias " + number(s.constantBias) +
+         (s.backFacesOnly ? ", back faces only" : "") + ", pcf " + std::to_string(s.pcf) + ", compare fail " +
+         number(s.compareFail);
+}
+
+std::string describeTrapezoidalSettings(const ShadowSettings& s) {
+  return describeMapSettings(s) + ", focus region " + number(s.focusRegion);
+}
+
+template <ShadowMapKind kind>
+void renderMapsOfKind(const Scene& scene, const FrameOptions& options, FrameResult& result, Pipeline& pipeline) {
+  renderShadowMaps(scene, kind, options, result, pipeline);
+}
+
+}  // namespace
+
+extern const ShadowTechnique kShadowMapTechnique{
+    .name = "shadowmap",
+    .summary = "shadow maps: a depth map per light, compared per fragment [Williams 1978], [Hempe 2004, §3.1]",
+    .settings = kMapSettings,
+    .countsInStencil = false,
+    .render = renderMapsOfKind<ShadowMapKind::Standard>,
+    .describe = describeMapSettings,
+};
+
+extern const ShadowTechnique kTrapezoidalTechnique{
+    .name = "tsm",
+    .summary = "trapezoidal shadow maps: the map warped to the view frustum's trapezoid [Martin & Tan 2004], [Hempe 2004, §4.1]",
+    .settings = kTrapezoidalSettings,
+    .countsInStencil = false,
+    .render = renderMapsOfKind<ShadowMapKind::Trapezoidal>,
+    .describe = describeTrapezoidalSettings,
+};
 
 }  // namespace shadowref

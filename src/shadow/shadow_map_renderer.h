@@ -17,7 +17,10 @@
 
 namespace shadowref {
 
-void renderShadowMaps(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
+// The light's clip space as it is, or warped by the trapezoid N_T (TSM, [Hempe 2004, §4.1]).
+enum class ShadowMapKind : uint8_t { Standard, Trapezoidal };
+
+void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions& options, FrameResult& result,
                       Pipeline& pipeline);
 
 }  // namespace shadowref

@@ -7,6 +7,7 @@
 
 #include "gl/clear.h"
 #include "gl/fragment_shader.h"
+#include "scene/scene_sections.h"
 #include "shadow/draw_tag.h"
 #include "shadow/facing.h"
 #include "shadow/occlusion_pyramid.h"
@@ -15,6 +16,7 @@
 #include "shadow/shadow_volume.h"
 #include "shadow/soft_lights.h"
 #include "shadow/stencil_counting.h"
+#include "shadow/technique.h"
 
 namespace shadowref {
 
@@ -27,10 +29,10 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 // The counting an object gets: fixed by the method, or McGuire's choice for `auto`
 // ([Kuhn 2016, §4.2.1, §4.3.2]): z-fail only where the object's box reaches into the occlusion
 // pyramid between the light and the near plane, where z-pass could miscount.
-StencilCounting countingFor(ShadowMethod method, const Instance& inst, const Scene& scene, const SceneView& view,
+StencilCounting countingFor(VolumeCounting method, const Instance& inst, const Scene& scene, const SceneView& view,
                             const Light& light) {
-  if (method == ShadowMethod::ZPass) return StencilCounting::ZPass;
-  if (method == ShadowMethod::ZFail) return StencilCounting::ZFail;
+  if (method == VolumeCounting::ZPass) return StencilCounting::ZPass;
+  if (method == VolumeCounting::ZFail) return StencilCounting::ZFail;
   return needsZFail(inst.shadowBounds, scene.camera, view.aspect, light.homogeneous()) ? StencilCounting::ZFail
                                                                                       : StencilCounting::ZPass;
 }
@@ -97,7 +99,7 @@ bool castsFor(const PreparedInstance& p, const Light& light) {
 // first, on all threads (each caster's own, independent of the others), then drawn in the
 // casters' order, one pass that ends here; `volumes` (the frame's) keeps their arrays.
 LightTotals drawVolumePass(Pipeline& pipeline, const RenderState& base, const Scene& scene, const SceneView& view,
-                           std::span<const PreparedInstance> prepared, const Light& light, ShadowMethod method,
+                           std::span<const PreparedInstance> prepared, const Light& light, VolumeCounting method,
                            std::vector<VolumeDraw>& volumes) {
   LightTotals totals;
   const CountingOptions counting{scene.shadow.twoSidedStencil, scene.shadow.wrapOps};
@@ -130,7 +132,7 @@ LightTotals drawVolumePass(Pipeline& pipeline, const RenderState& base, const Sc
     VolumeDraw& volume = volumes[i];
     ++totals.objects;
     ++(how[i] == StencilCounting::ZFail ? totals.zfail : totals.zpass);
-    if (how[i] == StencilCounting::ZFail && method == ShadowMethod::Auto) totals.zfailObjects.push_back(p.instance->path);
+    if (how[i] == StencilCounting::ZFail && method == VolumeCounting::PerCaster) totals.zfailObjects.push_back(p.instance->path);
     totals.volume.silhouetteEdges += volume.volume.stats.silhouetteEdges;
     totals.volume.sideTriangles += volume.volume.stats.sideTriangles;
     totals.volume.frontCapTriangles += volume.volume.stats.frontCapTriangles;
@@ -146,7 +148,7 @@ LightTotals drawVolumePass(Pipeline& pipeline, const RenderState& base, const Sc
 // ([DSS article]). One pass a light: its casters' volumes built into `volumes` (the frame's), then
 // drawn in the casters' order.
 void drawVolumeView(Pipeline& pipeline, const RenderState& base, const Scene& scene, const SceneView& view,
-                    std::span<const PreparedInstance> prepared, const std::vector<Light>& lights, ShadowMethod method,
+                    std::span<const PreparedInstance> prepared, const std::vector<Light>& lights, VolumeCounting method,
                     VolumeViewMode mode, std::vector<VolumeDraw>& volumes) {
   RenderState state = base;
   state.depthTest = true;
@@ -210,7 +212,7 @@ RenderState volumeBaseState(const SceneView& view) {
   return base;
 }
 
-void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
+void renderShadowVolumes(const Scene& scene, VolumeCounting method, const FrameOptions& options, FrameResult& result,
                          Pipeline& pipeline) {
   // Volumes reach infinity: P_inf, no far clipping ([Kuhn 2016, §3.3]).
   const SceneView view = makeCameraView(scene, true);
@@ -280,5 +282,56 @@ void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOpt
     });
   }
 }
+
+// The techniques of this file (technique_registry.cpp lists them). They differ only in how the
+// casters' volumes are counted, and read the same settings.
+namespace {
+
+constexpr TechniqueSetting kVolumeSettings[] = {
+    {"silhouette", "kuhn, yen_kwoon, kilgard, lengyel"},
+    {"two_sided", "true or false"},
+    {"wrap", "true or false"},
+    {"darken_composite", "true or false"},
+};
+
+std::string describeVolumeSettings(const ShadowSettings& s) {
+  return "silhouette " + std::string(enumName(silhouetteNames(), s.silhouette)) + ", " +
+         (s.twoSidedStencil ? "two-sided stencil" : "two culled passes") + ", " +
+         (s.wrapOps ? "wrapping" : "saturating") + " stencil ops" + (s.darkenComposite ? ", darken compositing" : "");
+}
+
+template <VolumeCounting counting>
+void renderVolumesCounting(const Scene& scene, const FrameOptions& options, FrameResult& result, Pipeline& pipeline) {
+  renderShadowVolumes(scene, counting, options, result, pipeline);
+}
+
+}  // namespace
+
+extern const ShadowTechnique kZPassTechnique{
+    .name = "zpass",
+    .summary = "stencil shadow volumes counted from the eye (z-pass) [Heidmann 1991], [Kuhn 2016, §3.2]",
+    .settings = kVolumeSettings,
+    .countsInStencil = true,
+    .render = renderVolumesCounting<VolumeCounting::ZPass>,
+    .describe = describeVolumeSettings,
+};
+
+extern const ShadowTechnique kZFailTechnique{
+    .name = "zfail",
+    .summary = "stencil shadow volumes counted behind the surface, capped (z-fail) [Everitt & Kilgard 2002], [Kuhn 2016, §3.4]",
+    .settings = kVolumeSettings,
+    .countsInStencil = true,
+    .render = renderVolumesCounting<VolumeCounting::ZFail>,
+    .describe = describeVolumeSettings,
+};
+
+extern const ShadowTechnique kAutoTechnique{
+    .name = "auto",
+    .summary = "stencil shadow volumes, z-fail only for the casters in the occlusion pyramid [McGuire et al. 2003], [Kuhn 2016, §4.2.1]",
+    .settings = kVolumeSettings,
+    .countsInStencil = true,
+    .render = renderVolumesCounting<VolumeCounting::PerCaster>,
+    .describe = describeVolumeSettings,
+};
 
 }  // namespace shadowref

@@ -21,7 +21,11 @@ namespace shadowref {
 // LESS.
 RenderState volumeBaseState(const SceneView& view);
 
-void renderShadowVolumes(const Scene& scene, ShadowMethod method, const FrameOptions& options, FrameResult& result,
+// How the casters' volumes are counted: every one z-pass, every one z-fail, or each as McGuire's
+// test chooses (the technique `auto`).
+enum class VolumeCounting : uint8_t { ZPass, ZFail, PerCaster };
+
+void renderShadowVolumes(const Scene& scene, VolumeCounting method, const FrameOptions& options, FrameResult& result,
                          Pipeline& pipeline);
 
 }  // namespace shadowref

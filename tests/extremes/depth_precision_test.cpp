@@ -105,7 +105,7 @@ TEST_CASE("Finite far plane 1e2 ... 1e9: the unshadowed box-on-ground shows the 
     Scene scene = boxOnGround();
     scene.camera.farPlane = farPlane;
     FrameOptions unshadowed;
-    unshadowed.method = ShadowMethod::None;
+    unshadowed.method = "none";
     const FrameResult frame = renderFrame(scene, unshadowed);
     oracle::OracleOptions options;  // finite projection, as the unshadowed frame draws it
     const oracle::OracleImage img = oracle::castOracle(scene, scene.lights[0], options);

@@ -57,11 +57,11 @@ struct Agreement {
 };
 
 oracle::OracleImage castFor(const Scene& scene, size_t light = 0);
-FrameResult renderStencil(const Scene& scene, ShadowMethod method);
+FrameResult renderStencil(const Scene& scene, std::string_view method);
 
 // The oracle count to compare with: z-fail's for ZFail and Auto, z-pass's for ZPass.
-Agreement compare(std::span<const uint8_t> stencil, const oracle::OracleImage& img, ShadowMethod method);
-Agreement renderAndCompare(const Scene& scene, ShadowMethod method, size_t light = 0);
+Agreement compare(std::span<const uint8_t> stencil, const oracle::OracleImage& img, std::string_view method);
+Agreement renderAndCompare(const Scene& scene, std::string_view method, size_t light = 0);
 
 std::string describe(const Agreement& a);
 

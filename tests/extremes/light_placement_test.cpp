@@ -63,9 +63,9 @@ TEST_CASE("A light 1e-9 above the ground: the box's shadow runs almost parallel 
   // at 4e-7 of the way to the light, beyond its 1e-7 offset — docs/numerics.md.)
   const glm::dvec3 light{-2.0, 1e-9, -1.0};
   const Scene scene = withPointLight(light);
-  const FrameResult frame = renderStencil(scene, ShadowMethod::ZFail);
+  const FrameResult frame = renderStencil(scene, "zfail");
   const oracle::OracleImage img = castFor(scene);
-  const Agreement a = compare(frame.stencilPerLight.at(0), img, ShadowMethod::ZFail);
+  const Agreement a = compare(frame.stencilPerLight.at(0), img, "zfail");
   // The oracle marks the whole shadow as ambiguous (the volume's bottom sides lie within 1e-6 of the
   // ground), so the comparison leaves out only pixels next to another object or to a change of
   // the hand-computed answer.
@@ -110,7 +110,7 @@ TEST_CASE("A light exactly on the ground's top face is a documented limit: the s
   // above the ground turn dark. (The ground's top face itself has N · L = 0: shadowed or not, it
   // gets no diffuse light.)
   const Scene scene = withPointLight({2.0, 0.0, 1.0});
-  const FrameResult frame = renderStencil(scene, ShadowMethod::ZFail);
+  const FrameResult frame = renderStencil(scene, "zfail");
   const oracle::OracleImage img = castFor(scene);
   size_t litBox = 0, shadedLitBox = 0;
   for (size_t i = 0; i < img.hitInstance.size(); ++i) {
@@ -126,11 +126,11 @@ TEST_CASE("A light exactly on the ground's top face is a documented limit: the s
 TEST_CASE("A light inside a closed box: every face of the box is averted, the back cap alone encloses everything "
           "outside, z-fail shades every surface pixel, z-pass lights the ground", "[extremes]") {
   const Scene scene = withPointLight({0.0, 0.5, 0.0});  // the centre of the unit box
-  const FrameResult zfail = renderStencil(scene, ShadowMethod::ZFail);
-  const FrameResult zpass = renderStencil(scene, ShadowMethod::ZPass);
+  const FrameResult zfail = renderStencil(scene, "zfail");
+  const FrameResult zpass = renderStencil(scene, "zpass");
   const oracle::OracleImage img = castFor(scene);
-  const Agreement f = compare(zfail.stencilPerLight.at(0), img, ShadowMethod::ZFail);
-  const Agreement p = compare(zpass.stencilPerLight.at(0), img, ShadowMethod::ZPass);
+  const Agreement f = compare(zfail.stencilPerLight.at(0), img, "zfail");
+  const Agreement p = compare(zpass.stencilPerLight.at(0), img, "zpass");
   // By hand: no point outside the box sees the light, and the box's outer faces all avert it.
   // (The oracle's shadow ray from a box face runs inwards to the light unobstructed and reports it
   // lit; the face still gets no light, N · L < 0.)
@@ -163,7 +163,7 @@ TEST_CASE("Grazing directional light (1e-6 rad above the ground plane): the z-fa
   Scene scene = boxOnGround();
   scene.lights[0].type = LightType::Directional;
   scene.lights[0].direction = glm::dvec3(1.0, -1e-6, 0.4);
-  const Agreement a = renderAndCompare(scene, ShadowMethod::ZFail);
+  const Agreement a = renderAndCompare(scene, "zfail");
   INFO(describe(a));
   CHECK(a.compared > a.pixels / 2);
   CHECK(a.shadowed > 0);

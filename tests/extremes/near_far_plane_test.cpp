@@ -31,7 +31,7 @@ TEST_CASE("P_inf with near 1e-1 ... 1e-4: the z-fail stencil equals the oracle's
           "unorm24", "[extremes]") {
   for (DepthFormat format : {DepthFormat::Float32, DepthFormat::Unorm24}) {
     for (double nearPlane : {1e-1, 1e-2, 1e-3, 1e-4}) {
-      const Agreement a = renderAndCompare(withNear(nearPlane, format), ShadowMethod::ZFail);
+      const Agreement a = renderAndCompare(withNear(nearPlane, format), "zfail");
       INFO("near " << nearPlane << (format == DepthFormat::Float32 ? " float32: " : " unorm24: ") << describe(a));
       CHECK(a.compared > a.pixels / 2);
       CHECK(a.shadowed > 0);
@@ -53,7 +53,7 @@ TEST_CASE("P_inf with near 1e-5 and 1e-6: float32 depth runs out of codes, the z
     double maxMismatchShare;
   };
   for (const Case& c : {Case{1e-5, 0.01}, Case{1e-6, 0.065}}) {
-    const Agreement a = renderAndCompare(withNear(c.nearPlane), ShadowMethod::ZFail);
+    const Agreement a = renderAndCompare(withNear(c.nearPlane), "zfail");
     const double share = double(a.countMismatch) / double(a.compared);
     INFO("near " << c.nearPlane << ": " << describe(a) << " share " << share);
     CHECK(a.compared > a.pixels / 2);

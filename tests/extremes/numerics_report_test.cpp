@@ -26,7 +26,7 @@ void nearPlaneTable() {
       Scene scene = boxOnGround();
       scene.camera.nearPlane = nearPlane;
       scene.depthFormat = format;
-      const Agreement a = renderAndCompare(scene, ShadowMethod::ZFail);
+      const Agreement a = renderAndCompare(scene, "zfail");
       const uint64_t codes = codesBetween(infinitePerspective(50.0, 1.25, nearPlane), 3.0, 12.0, format);
       std::printf("| %g | %s | %llu | %zu | %zu | %.4f %% | %.4f %% |\n", nearPlane, formatName(format),
                   static_cast<unsigned long long>(codes), a.compared, a.countMismatch,
@@ -45,7 +45,7 @@ void similarityTable() {
                         Case{"translate 1e8", 1.0, 1e8}, Case{"scale 1e-4", 1e-4, 0.0}, Case{"scale 1e4", 1e4, 0.0},
                         Case{"scale 1e-4, translate 1e2", 1e-4, 1e2}}) {
     const Scene scene = similar(boxOnGround(), c.scale, glm::dvec3(c.offset, 0.5 * c.offset, -c.offset));
-    const Agreement a = renderAndCompare(scene, ShadowMethod::ZFail);
+    const Agreement a = renderAndCompare(scene, "zfail");
     std::printf("| %s | %zu | %zu | %zu / %zu | %.4f %% |\n", c.name, a.compared, a.countMismatch, a.maskDisagree,
                 a.maskDisagreeOffEdge, 100.0 * a.maskAgreement());
   }

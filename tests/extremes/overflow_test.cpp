@@ -67,8 +67,8 @@ TEST_CASE("300 volumes, wrapping ops: the stencil is the count mod 256 (300 -> 4
           "shadow test fails exactly where the count is 256", "[extremes]") {
   const Scene scene = overflowScene();
   const oracle::OracleImage img = castFor(scene);
-  const FrameResult frame = renderStencil(scene, ShadowMethod::ZFail);
-  const Agreement a = compare(frame.stencilPerLight.at(0), img, ShadowMethod::ZFail);
+  const FrameResult frame = renderStencil(scene, "zfail");
+  const Agreement a = compare(frame.stencilPerLight.at(0), img, "zfail");
   const OverflowCounts c = tally(frame.stencilPerLight[0], img, 300 - 256);
   INFO(describe(a) << "\n300: " << c.at300 << " (" << c.at300Right << " read 44), 256: " << c.at256 << " ("
                    << c.at256Lit << " read 0), wrong shadow test " << c.maskWrong);
@@ -85,8 +85,8 @@ TEST_CASE("300 volumes, saturating ops in two passes (increments first): counts 
           "wrong where the count passes 255, while in this scene the shadow test stays right", "[extremes]") {
   const Scene scene = overflowScene({"shadow.wrap=false", "shadow.two_sided=false"});
   const oracle::OracleImage img = castFor(scene);
-  const FrameResult frame = renderStencil(scene, ShadowMethod::ZFail);
-  const Agreement a = compare(frame.stencilPerLight.at(0), img, ShadowMethod::ZFail);
+  const FrameResult frame = renderStencil(scene, "zfail");
+  const Agreement a = compare(frame.stencilPerLight.at(0), img, "zfail");
   const OverflowCounts c = tally(frame.stencilPerLight[0], img, 255);
   INFO(describe(a) << "\n300: " << c.at300 << " (" << c.at300Right << " read 255), wrong shadow test " << c.maskWrong);
   CHECK(a.countMismatch > 0);  // the counts are not kept ...
@@ -99,8 +99,8 @@ TEST_CASE("300 volumes, saturating ops with two-sided stencil: a DECR clamps at 
           "and the shadow test go wrong", "[extremes]") {
   const Scene scene = overflowScene({"shadow.wrap=false"});
   const oracle::OracleImage img = castFor(scene);
-  const FrameResult frame = renderStencil(scene, ShadowMethod::ZFail);
-  const Agreement a = compare(frame.stencilPerLight.at(0), img, ShadowMethod::ZFail);
+  const FrameResult frame = renderStencil(scene, "zfail");
+  const Agreement a = compare(frame.stencilPerLight.at(0), img, "zfail");
   const OverflowCounts c = tally(frame.stencilPerLight[0], img, 255);
   INFO(describe(a) << "\nwrong shadow test " << c.maskWrong);
   CHECK(a.countMismatch > 0);

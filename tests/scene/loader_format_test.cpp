@@ -37,7 +37,7 @@ TEST_CASE("omitted keys keep the defaults of scene.h", "[loader]") {
   CHECK(s.camera.eye == d.camera.eye);
   CHECK(s.camera.fovYDegrees == 60.0);
   CHECK(s.camera.farPlane == kInfinity);
-  CHECK(s.shadow.method == ShadowMethod::None);
+  CHECK(s.shadow.method == "none");
   CHECK(s.shadow.compareFail == 0.4);
   REQUIRE(s.materials.size() == 1);
   CHECK(s.materials[0].name == "default");
@@ -91,7 +91,7 @@ TEST_CASE("every section's keys set the matching scene fields", "[loader]") {
   CHECK(m.shading == ShadingModel::Gouraud);
   CHECK(m.blinn);
   const ShadowSettings& sh = s.shadow;
-  CHECK(sh.method == ShadowMethod::Trapezoidal);
+  CHECK(sh.method == "tsm");
   CHECK(sh.silhouette == SilhouetteAlgorithm::Lengyel);
   CHECK(!sh.twoSidedStencil);
   CHECK(!sh.wrapOps);
@@ -177,7 +177,7 @@ TEST_CASE("overrides given with -D apply after the file, in command-line order",
   CHECK(s.camera.nearPlane == 0.001);
   CHECK(s.lights[0].range == 5.0);
   CHECK(s.lights[1].soft == SoftShape::AreaEdge16);
-  CHECK(s.shadow.method == ShadowMethod::ZPass);  // the later -D wins
+  CHECK(s.shadow.method == "zpass");  // the later -D wins
   CHECK(s.materials[1].diffuse == glm::dvec3(0.1, 0.2, 0.3));
   CHECK(s.ambient == glm::dvec3(0.05));
   CHECK(s.depthFormat == DepthFormat::Unorm24);
@@ -206,7 +206,9 @@ TEST_CASE("describeScene lists nodes, meshes with topology, lights, bounds and t
   CHECK_THAT(text, Contains("box: 12 triangles, 8 welded vertices, 18 edges, closed (0 open, 0 non-manifold edges)"));
   CHECK_THAT(text, Contains("crate  mesh box, material default, world bounds (1.5, 0, -0.5) .. (2.5, 1, 0.5)"));
   CHECK_THAT(text, Contains("bulb: point at (0, 3, 0)"));
-  CHECK_THAT(text, Contains("shadow: zfail, silhouette kuhn"));
+  // The technique's settings are described by the technique (src/shadow), passed in.
+  CHECK_THAT(text, Contains("\nshadow: zfail\n"));
+  CHECK_THAT(describeScene(s, "silhouette kuhn"), Contains("\nshadow: zfail, silhouette kuhn\n"));
   CHECK_THAT(text, Contains("total: 1 instances, 12 triangles drawn"));
 }
 

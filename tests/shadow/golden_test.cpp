@@ -26,19 +26,18 @@ namespace {
 struct GoldenCase {
   std::string name;   // golden/<name>.exr
   std::string scene;  // scenes/<scene>.yaml
-  ShadowMethod method;
+  std::string_view method;
   std::vector<std::string> overrides;
 };
 
 std::vector<GoldenCase> goldenCases() {
   std::vector<GoldenCase> cases;
-  const std::pair<const char*, ShadowMethod> methods[] = {
-      {"zpass", ShadowMethod::ZPass}, {"zfail", ShadowMethod::ZFail}, {"auto", ShadowMethod::Auto}};
   for (const char* scene : {"room", "pumpkins", "city16", "minimal"})
-    for (const auto& [suffix, method] : methods) cases.push_back({std::string(scene) + "-" + suffix, scene, method, {}});
+    for (const char* method : {"zpass", "zfail", "auto"})
+      cases.push_back({std::string(scene) + "-" + method, scene, method, {}});
   // Soft shadows ([Kuhn 2016, §3.6]): the ceiling light plus 8 on a square in the Y plane, 9
   // stencils.
-  cases.push_back({"room-soft-square_y", "room", ShadowMethod::ZFail,
+  cases.push_back({"room-soft-square_y", "room", "zfail",
                    {"lights.0.soft.shape=square_y", "lights.0.soft.spacing=0.3"}});
   return cases;
 }

@@ -156,7 +156,7 @@ TEST_CASE("shadow map frame: a Gouraud material is lit per vertex and modulated 
   Scene unshadowed = gouraud;
   unshadowed.shadow.compareFail = 1.0;
   Scene shadowless = gouraud;
-  shadowless.shadow.method = ShadowMethod::None;
+  shadowless.shadow.method = "none";
   const Scene perPixel = makeScene(kBulb);
   const FrameResult g = render(gouraud), u = render(unshadowed), none = render(shadowless), pp = render(perPixel);
   REQUIRE(u.framebuffer.color() == none.framebuffer.color());
@@ -288,7 +288,7 @@ TEST_CASE("shadow map frame: polygon offset, constant bias and back faces only e
       "{method: tsm, map_size: 256}"};
   for (const std::string& choice : choices) {
     const Scene scene = makeScene(kObliqueSun, choice);
-    const auto shadow = shadowOf(scene, scene.shadow.method == ShadowMethod::Trapezoidal);
+    const auto shadow = shadowOf(scene, scene.shadow.method == "tsm");
     INFO("shadow settings " << choice);
     for (const glm::dvec3& p : groundGrid(3.8)) {
       const bool clearlyLit = p.x > 0.2 || std::abs(p.z) > 1.2 || p.x < -3.2;

@@ -155,7 +155,7 @@ size_t nonZeroCount(std::span<const uint8_t> s) {
 // The frame renderer's z-fail frame: its depth buffer (the ambient pass's) and its stencils.
 FrameResult zfailFrame(const Scene& scene) {
   FrameOptions options;
-  options.method = ShadowMethod::ZFail;
+  options.method = "zfail";
   options.keepStencil = true;
   return renderFrame(scene, options);
 }
