@@ -52,16 +52,17 @@
 #include <unistd.h>
 #include <vector>
 
+#include "frames_in_turn.h"
+#include "identical_frames.h"
 #include "issue_targets.h"
+#include "series_stats.h"
 #include "target_tally.h"
 #include "conformance/osmesa_harness.h"
-#include "cli/timing_stats.h"
 #include "image/image_writer.h"
 #include "mesa_frame.h"
 #include "memory/allocator_tuning.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
-#include "shadow/frames_in_turn.h"
 
 namespace shadowref::bench {
 
@@ -518,16 +519,6 @@ void csvRow(std::ofstream& csv, const std::string& section, const SceneCase& c, 
 
 // ---------------------------------------------------------------------------------------------
 // Determinism: every buffer byte-identical for 1, 2 and 8 threads.
-
-template <class T>
-bool sameBytes(const PixelVector<T>& a, const PixelVector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-bool identicalFrames(const Framebuffer& a, const Framebuffer& b) {
-  return sameBytes(a.color(), b.color()) && sameBytes(a.depthCodes(), b.depthCodes()) &&
-         sameBytes(a.stencil(), b.stencil()) && sameBytes(a.accum(), b.accum());
-}
 
 // Per scene: whether 2 and 8 threads gave 1 thread's bytes.
 std::vector<bool> checkDeterminism(const std::vector<SceneCase>& cases, std::ofstream& csv) {
