@@ -59,7 +59,7 @@
 #include "issue_targets.h"
 #include "series_stats.h"
 #include "target_tally.h"
-#include "conformance/osmesa_harness.h"
+#include "osmesa/osmesa_harness.h"
 #include "image/image_writer.h"
 #include "mesa_frame.h"
 #include "memory/allocator_tuning.h"
