@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "conformance/gl_state.h"
-#include "conformance/osmesa_harness.h"
+#include "osmesa/gl_state.h"
+#include "osmesa/osmesa_harness.h"
 #include "gl/lighting.h"
 #include "gl/render_state.h"
 #include "shadow/facing.h"

@@ -1,13 +1,10 @@
 // The speed targets over many runs of bench/vs-mesa (vs_mesa --tally FILE...): each run's own
 // table of targets (issue_targets.h, the end of its output) read back, and for every figure in how
 // many runs it was met. On a shared host one run is a sample: this shows which figures a run meets
-// nearly always, which depend on the host, and — for two threads / one — how that follows the
-// host's capacity for two threads measured beside each figure, how often llvmpipe's own two
-// threads / one reached the same line in the same runs, and — where the target is judged on frames
-// in turn in one process — how often shadowref's separate processes did.
+// nearly always and which depend on the host. Rows without a verdict (information, such as two
+// threads against one) are not counted.
 #pragma once
 
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <istream>
@@ -24,7 +21,7 @@ namespace shadowref::bench {
 struct RunTargets {
   struct Row {
     std::string what;                  // the label, without its leading spaces
-    bool indented = false;             // an information row under a target (capacity, llvmpipe)
+    bool indented = false;             // an information row under another row
     std::optional<double> threshold;   // "what >= threshold"; none for information and yes/no rows
     std::vector<std::string> cells;    // as printed: "1.76 SHORT", "identical", "2.15"
   };
@@ -112,63 +109,13 @@ inline bool cellMet(const std::string& cell) {
 // only where it is).
 class TargetTally {
  public:
-  // Two threads / one is split by the host's capacity for two threads in the same cell: at or
-  // above the target's line the host left room for it, below it no renderer could reach it.
   void add(const std::string& name, const RunTargets& run) {
     if (columns_.empty()) columns_ = run.columns;
     runs_.push_back({name, run.commit, run.met, run.checked});
-    const RunTargets::Row* target = nullptr;  // the last target row, for the rows indented under it
-    std::vector<bool> twoThreadsMet(run.columns.size(), true), llvmpipeMet(run.columns.size(), true);
-    bool twoThreadRows = false;
-    int twoThreadCells = 0, roomCells = 0;  // two-thread figures, and those with room beside them
     for (const RunTargets::Row& row : run.rows) {
-      if (!row.indented) target = row.threshold || isYesNo(row) ? &row : nullptr;
-      if (target && !row.indented) {
-        Counts& c = counts(row.what, row.what);
-        for (size_t i = 0; i < row.cells.size(); ++i) c.add(i, cellMet(row.cells[i]));
-        if (isTwoThreads(row.what)) {
-          twoThreadRows = true;
-          twoThreadCells += int(row.cells.size());
-          for (size_t i = 0; i < row.cells.size() && i < twoThreadsMet.size(); ++i)
-            twoThreadsMet[i] = twoThreadsMet[i] && cellMet(row.cells[i]);
-        }
-      } else if (target && target->threshold && isTwoThreads(target->what)) {
-        const double line = *target->threshold;
-        const std::string threshold = target->what.substr(target->what.find(" >= ") + 4);
-        if (row.what.rfind("the host's capacity for two threads", 0) == 0) {
-          Counts& room = counts(target->what + "|room", "  where the host's capacity was >= " + threshold);
-          Counts& none = counts(target->what + "|none", "  where it was below " + threshold);
-          for (size_t i = 0; i < row.cells.size() && i < target->cells.size(); ++i) {
-            const std::optional<double> capacity = tally_detail::leadingNumber(row.cells[i]);
-            if (!capacity) continue;
-            (*capacity >= line ? room : none).add(i, cellMet(target->cells[i]));
-            roomCells += *capacity >= line;
-          }
-        } else if (row.what.rfind("separate processes, 2 threads / 1", 0) == 0) {
-          // Beside a target judged on frames in turn: the same ratio from separate processes.
-          Counts& c = counts(target->what + "|separate", "  separate processes >= " + threshold + ", same runs");
-          for (size_t i = 0; i < row.cells.size(); ++i)
-            if (const std::optional<double> v = tally_detail::leadingNumber(row.cells[i])) c.add(i, *v >= line);
-        } else if (row.what.rfind("llvmpipe's 2 threads / 1", 0) == 0) {
-          Counts& c = counts(target->what + "|llvmpipe", "  llvmpipe's 2 threads / 1 >= " + threshold + ", same runs");
-          for (size_t i = 0; i < row.cells.size(); ++i) {
-            const std::optional<double> v = tally_detail::leadingNumber(row.cells[i]);
-            if (!v) continue;
-            c.add(i, *v >= line);
-            if (i < llvmpipeMet.size()) llvmpipeMet[i] = llvmpipeMet[i] && *v >= line;
-          }
-        }
-      }
-    }
-    if (twoThreadRows) {
-      const bool allMet = std::all_of(twoThreadsMet.begin(), twoThreadsMet.end(), [](bool b) { return b; });
-      ++twoThreadRuns_;
-      allTwoThreads_ += allMet;
-      allLlvmpipe_ += std::all_of(llvmpipeMet.begin(), llvmpipeMet.end(), [](bool b) { return b; });
-      if (roomCells == twoThreadCells) {
-        ++roomEverywhere_;
-        roomEverywhereAllMet_ += allMet;
-      }
+      if (row.indented || !(row.threshold || isYesNo(row)) || retired(row.what)) continue;
+      Counts& c = counts(row.what);
+      for (size_t i = 0; i < row.cells.size(); ++i) c.add(i, cellMet(row.cells[i]));
     }
   }
 
@@ -177,13 +124,7 @@ class TargetTally {
   std::string text() const {
     std::string out = "The speed targets over " + std::to_string(runs_.size()) +
                       " runs: in how many runs each figure was met\n" + targetLine("target", columns_);
-    for (const std::string& key : order_) out += targetLine(counts_.at(key).label, cellsOf(key));
-    if (twoThreadRuns_ > 0)
-      out += "runs with every two-thread figure met: shadowref " + std::to_string(allTwoThreads_) + ", llvmpipe " +
-             std::to_string(allLlvmpipe_) + " (of " + std::to_string(twoThreadRuns_) + ")\n" +
-             "runs with the host's capacity for two threads at or above the line in every two-thread cell: " +
-             std::to_string(roomEverywhere_) + " (every two-thread figure met in " + std::to_string(roomEverywhereAllMet_) +
-             " of them)\n";
+    for (const std::string& what : order_) out += targetLine(what, cellsOf(what));
     out += "figures met, run by run:\n";
     for (const RunLine& r : runs_)
       out += "  " + std::to_string(r.met) + " of " + std::to_string(r.checked) + "  " + r.name +
@@ -193,7 +134,6 @@ class TargetTally {
 
  private:
   struct Counts {
-    std::string label;
     std::vector<int> met, seen;
     void add(size_t column, bool ok) {
       if (met.size() <= column) {
@@ -209,19 +149,18 @@ class TargetTally {
     int met = 0, checked = 0;
   };
 
+  // Two threads against one was once judged (>= 1.8) and is now a figure without a verdict: on a
+  // shared host of two cores the host decides it, not the code. Runs saved before still carry the
+  // verdict; it is not counted.
+  static bool retired(const std::string& what) { return what.find("2 threads / 1") != std::string::npos; }
   static bool isYesNo(const RunTargets::Row& row) {
     return !row.threshold && !row.cells.empty() && !tally_detail::leadingNumber(row.cells[0]);
   }
-  static bool isTwoThreads(const std::string& what) { return what.find("2 threads / 1 >= ") != std::string::npos; }
 
-  // The count kept under `key`, printed as `label` (a target row's own label, or the label of a
-  // line under it).
-  Counts& counts(const std::string& key, const std::string& label) {
-    auto [it, added] = counts_.try_emplace(key);
-    if (added) {
-      order_.push_back(key);
-      it->second.label = label;
-    }
+  // The count of the target row labelled `what`, made at its first sight.
+  Counts& counts(const std::string& what) {
+    auto [it, added] = counts_.try_emplace(what);
+    if (added) order_.push_back(what);
     return it->second;
   }
   std::vector<std::string> cellsOf(const std::string& what) const {
@@ -235,8 +174,6 @@ class TargetTally {
   std::vector<RunLine> runs_;
   std::map<std::string, Counts> counts_;
   std::vector<std::string> order_;
-  int twoThreadRuns_ = 0, allTwoThreads_ = 0, allLlvmpipe_ = 0;
-  int roomEverywhere_ = 0, roomEverywhereAllMet_ = 0;  // runs whose every two-thread cell had room
 };
 
 }  // namespace shadowref::bench

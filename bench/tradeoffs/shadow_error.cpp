@@ -9,7 +9,7 @@
 
 #include "shadow/frame_renderer.h"
 #include "shadow/soft_lights.h"
-#include "support/oracle/oracle.h"
+#include "oracle/oracle.h"
 #include "tradeoffs/soft_reference.h"
 
 namespace shadowref::bench {

@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
-#include "support/oracle/oracle.h"
+#include "oracle/oracle.h"
 #include "tradeoffs/experiments.h"
 
 namespace shadowref::bench {

@@ -1,5 +1,7 @@
 // `shadowref bench [SCENE]`: renders the same frame several times and reports the median time per
-// frame and per pass. Timing is a measurement, never a pass/fail test.
+// frame and per pass. It prints timings and judges none: a time is a measurement of this machine
+// at this moment, never a pass/fail test. (The benchmarks in bench/ look inside a frame's threads
+// and compare with Mesa.)
 #pragma once
 
 #include <string>
@@ -18,8 +20,6 @@ struct BenchArgs {
   int frames = 5;
   int threads = 0;
   bool csv = false;
-  bool runs = false;  // --runs: each pool run of a frame
-  bool alternate = false;  // --alternate: frames at one thread and at --threads in turn, in one process
 };
 
 void addBenchCommand(CLI::App& app, BenchArgs& args);

@@ -8,10 +8,6 @@
 namespace shadowref {
 
 namespace {
-int64_t nanosecondsNow() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 // How long an idle worker spins before it sleeps: longer than the serial work between two
 // rasterizations (building a pass's volumes, setting up its triangles), so that the worker is
 // there when the bands are handed out; short enough not to hold a core between frames.
@@ -80,19 +76,12 @@ void ThreadPool::drain(uint32_t generation) {
     if (uint32_t(ticket >> 32) != generation || first >= count) return;
     const int claimed = claimSize(count - first, threadCount());
     if (!ticket_.compare_exchange_weak(ticket, ticket + uint64_t(claimed), std::memory_order_acq_rel)) continue;
-    // The claimed tasks belong to this run, which cannot end before they are done: task_ is its.
-    const bool timing = timing_.load(std::memory_order_relaxed);
-    const int64_t start = timing ? nanosecondsNow() : 0;
-    const std::function<void(int)>& task = *task_.load(std::memory_order_relaxed);
-    for (int i = first; i < first + claimed; ++i) {
-      try {
-        task(i);
-      } catch (...) {
-        std::lock_guard lock(mutex_);
-        if (!error_) error_ = std::current_exception();
-      }
+    // The claimed tasks belong to this run, which cannot end before they are done: task_ and
+    // observer_ are its.
+    if (const std::exception_ptr e = runTasks(*task_.load(std::memory_order_relaxed), first, claimed)) {
+      std::lock_guard lock(mutex_);
+      if (!error_) error_ = e;
     }
-    if (timing) taskNanoseconds_.fetch_add(nanosecondsNow() - start, std::memory_order_relaxed);
     done_.fetch_add(claimed, std::memory_order_release);
     ticket = ticket_.load(std::memory_order_acquire);
   }
@@ -103,7 +92,7 @@ uint32_t ThreadPool::waitForWork(uint32_t seen) {
   for (int spins = 0;; ++spins) {
     const uint32_t g = generation_.load(std::memory_order_acquire);
     if (g != seen || stop_.load(std::memory_order_acquire)) return g;
-    if ((spins & 63) == 63 && !awake_.load(std::memory_order_relaxed) && std::chrono::steady_clock::now() > spinUntil)
+    if ((spins & 63) == 63 && std::chrono::steady_clock::now() > spinUntil)
       break;
     relax(spins);
   }
@@ -125,51 +114,28 @@ void ThreadPool::workerLoop() {
   }
 }
 
-void ThreadPool::keepAwake(bool on) { awake_.store(on, std::memory_order_relaxed); }
-
-void ThreadPool::timeRuns(bool on) {
-  taskNanoseconds_ = 0;
-  records_.clear();
-  timing_ = on;
-}
-
-// Every task of the run added its time before it counted itself done, and run() saw all of them
-// done: the task time read here is the run's whole.
-void ThreadPool::recordRun(int tasks, int64_t start, int64_t tasksBefore) {
-  const int64_t end = nanosecondsNow();
-  records_.push_back({tasks, start, end, taskNanoseconds_.load() - tasksBefore});
-}
-
-ThreadPool::Times ThreadPool::times() const {
-  Times t;
-  int64_t runNanoseconds = 0;
-  for (const RunRecord& r : records_) {
-    t.runs += 1;
-    t.tasks += r.tasks;
-    runNanoseconds += r.end - r.start;
+std::exception_ptr ThreadPool::runTasks(const std::function<void(int)>& task, int first, int count) {
+  RunObserver* const observer = observer_.load(std::memory_order_relaxed);
+  const int64_t mark = observer ? observer->claimBegins(count) : 0;
+  std::exception_ptr error;
+  for (int i = first; i < first + count; ++i) {
+    try {
+      task(i);
+    } catch (...) {
+      if (!error) error = std::current_exception();
+    }
   }
-  t.runMilliseconds = double(runNanoseconds) * 1e-6;
-  t.taskMilliseconds = double(taskNanoseconds_.load()) * 1e-6;
-  return t;
+  if (observer) observer->claimEnds(count, mark);
+  return error;
 }
 
 void ThreadPool::run(int count, const std::function<void(int)>& task) {
-  const bool timing = timing_.load(std::memory_order_relaxed);
-  const int64_t start = timing ? nanosecondsNow() : 0;
-  const int64_t tasksBefore = timing ? taskNanoseconds_.load() : 0;
+  RunObserver* const observer = observer_.load(std::memory_order_relaxed);
+  if (observer) observer->runBegins(count);
   if (workers_.empty() || count <= 1) {
-    std::exception_ptr error;
-    for (int i = 0; i < count; ++i) {
-      try {
-        task(i);
-      } catch (...) {
-        if (!error) error = std::current_exception();
-      }
-    }
-    if (timing) {  // the caller's tasks, one after another, are the whole run
-      taskNanoseconds_ += nanosecondsNow() - start;
-      recordRun(count, start, tasksBefore);
-    }
+    // The caller's tasks, one after another: one claim.
+    const std::exception_ptr error = count > 0 ? runTasks(task, 0, count) : nullptr;
+    if (observer) observer->runEnds(count);
     if (error) std::rethrow_exception(error);
     return;
   }
@@ -189,7 +155,8 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
   }
   drain(generation);
   for (int step = 0; done_.load(std::memory_order_acquire) < count; ++step) relax(step);
-  if (timing) recordRun(count, start, tasksBefore);
+  // Every claim ended (and told the observer) before it counted its tasks done.
+  if (observer) observer->runEnds(count);
   std::exception_ptr error;
   {
     std::lock_guard lock(mutex_);

@@ -22,6 +22,23 @@
 
 namespace shadowref {
 
+// What a pool's runs look like from outside, for measuring them (bench/pool_runs.h times the runs
+// and the threads' time inside tasks with it). An observer only watches: which tasks run, on
+// which thread and in what order of claims does not depend on it, and nothing it is told can
+// reach a pixel, so the bytes are the same with or without one.
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  // On the thread that called run(): before the first task of a run of `tasks` tasks starts, and
+  // after the last one is done (also when a task threw).
+  virtual void runBegins(int tasks) = 0;
+  virtual void runEnds(int tasks) = 0;
+  // On the thread that runs them, around each claim of `tasks` consecutive tasks of a run: on
+  // several threads at once. claimEnds is handed what claimBegins returned on that thread.
+  virtual int64_t claimBegins(int tasks) = 0;
+  virtual void claimEnds(int tasks, int64_t fromBegin) = 0;
+};
+
 class ThreadPool {
  public:
   // threads <= 1: everything runs on the calling thread.
@@ -37,30 +54,10 @@ class ThreadPool {
   // reentrant: one run at a time, from one thread.
   void run(int count, const std::function<void(int)>& task);
 
-  // What the runs cost while timing is on: the caller's time inside run() and the threads' time
-  // inside tasks. Tasks run within their run and each thread runs one at a time, so task time is
-  // at most threadCount() × run time; the rest is time a thread of a run waited — for work to
-  // start, or for the last task of another thread (`shadowref bench` prints the share). Off by
-  // default: two clock reads a task.
-  struct Times {
-    int64_t runs = 0, tasks = 0;
-    double runMilliseconds = 0.0, taskMilliseconds = 0.0;
-  };
-  void timeRuns(bool on);  // and starts the times from zero
-  Times times() const;
-  // Each run while timing is on, in order: its tasks, when it began and ended (steady_clock
-  // nanoseconds since that clock's epoch) and the threads' time inside its tasks. What
-  // `shadowref bench --runs` lays out run by run. Started again by timeRuns.
-  struct RunRecord {
-    int tasks = 0;
-    int64_t start = 0, end = 0, taskNanoseconds = 0;
-  };
-  const std::vector<RunRecord>& runRecords() const { return records_; }
-
-  // While on, idle workers spin without end instead of sleeping after a while: a run after a long
-  // pause (a frame drawn on one thread in between, `shadowref bench --alternate`) finds them awake,
-  // as a run does in a stream of frames. Off by default: a pool between frames holds no core.
-  void keepAwake(bool on);
+  // Watches the runs (nullptr: none, the default). Set between runs, from the thread that calls
+  // run(); the observer must outlive its time set. It changes nothing the tasks do: the bytes are
+  // the same with or without one.
+  void setObserver(RunObserver* observer) { observer_.store(observer, std::memory_order_relaxed); }
   // Workers asleep on the condition variable now (at most threadCount() - 1).
   int sleepingWorkers() const { return sleepers_.load(); }
 
@@ -73,16 +70,15 @@ class ThreadPool {
   // Claims and runs tasks of run number `generation` until none is left.
   void drain(uint32_t generation);
   uint32_t waitForWork(uint32_t seen);
-  // Adds a run of `tasks` that began at `start` (nanoseconds), when the task time stood at
-  // `tasksBefore`, to the times.
-  void recordRun(int tasks, int64_t start, int64_t tasksBefore);
+  // Runs tasks [first, first + count) on this thread, each whatever the others threw, as one claim
+  // the observer sees; returns the first exception thrown (none: null).
+  std::exception_ptr runTasks(const std::function<void(int)>& task, int first, int count);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::atomic<int> sleepers_{0};
   std::atomic<bool> stop_{false};
-  std::atomic<bool> awake_{false};  // keepAwake
   // The current run: its number, and the next task to claim in the low 32 bits of `ticket_`
   // (number in the high bits), so a worker late from an earlier run can never claim a task of
   // this one.
@@ -92,9 +88,9 @@ class ThreadPool {
   std::atomic<const std::function<void(int)>*> task_{nullptr};
   std::atomic<int> count_{0};
   std::exception_ptr error_;  // the first exception of the current run, under mutex_
-  std::atomic<bool> timing_{false};
-  std::atomic<int64_t> taskNanoseconds_{0};  // every thread's, added per claim
-  std::vector<RunRecord> records_;  // written by the calling thread only, at each run's end: times() sums them
+  // Read by workers only inside a run (after a claim), which cannot end before they are done, and
+  // set only between runs: generation_'s store publishes it to them.
+  std::atomic<RunObserver*> observer_{nullptr};
 };
 
 // The pool of `threads` threads that the calling thread keeps for its renderers (nullptr for 1):

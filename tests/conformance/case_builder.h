@@ -8,7 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "conformance/comparison.h"
-#include "conformance/scenario.h"
+#include "osmesa/scenario.h"
 
 namespace shadowref::conformance {
 

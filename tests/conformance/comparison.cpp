@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "conformance/edge_mask.h"
-#include "conformance/osmesa_harness.h"
+#include "osmesa/osmesa_harness.h"
 #include "conformance/shadowref_backend.h"
 
 namespace shadowref::conformance {

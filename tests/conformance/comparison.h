@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "conformance/scenario.h"
+#include "osmesa/scenario.h"
 
 namespace shadowref::conformance {
 

@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "conformance/case_builder.h"
-#include "conformance/osmesa_harness.h"
+#include "osmesa/osmesa_harness.h"
 #include "conformance/shadowref_backend.h"
 
 using namespace shadowref;

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "conformance/scenario.h"
+#include "osmesa/scenario.h"
 
 namespace shadowref::conformance {
 

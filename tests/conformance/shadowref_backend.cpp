@@ -8,13 +8,6 @@
 
 namespace shadowref::conformance {
 
-RenderState fullViewportState(int width, int height) {
-  RenderState s;
-  s.viewport = Viewport{0, 0, width, height, 0.0, 1.0};
-  s.scissor = Rect{0, 0, width, height};
-  return s;
-}
-
 namespace {
 
 void execute(Renderer& renderer, const DrawStep& d) {

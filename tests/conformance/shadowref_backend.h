@@ -1,7 +1,7 @@
 // Renders a conformance scenario with shadowref's raster pipeline in its 24-bit depth mode.
 #pragma once
 
-#include "conformance/scenario.h"
+#include "osmesa/scenario.h"
 
 namespace shadowref::conformance {
 

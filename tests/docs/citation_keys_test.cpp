@@ -1,4 +1,4 @@
-// Citations in the code resolve: every key in square brackets that src/, tests/ and bench/ cite —
+// Citations in the code resolve: every key in square brackets that src/, support/, tests/ and bench/ cite —
 // an author and a year, "GL 2.1", "SV slides" or "DSS article", optionally followed by ", §x.y" —
 // has an entry "**[Key]**" in docs/references.md; and nothing cites what a reader of the
 // repository cannot open (the project's planning files, issue numbers, the source documents by
@@ -27,10 +27,11 @@ std::string readFile(const fs::path& p) {
   return s.str();
 }
 
-// The text files of src/, tests/ and bench/ (not bench/results/: recorded runs, kept as printed).
+// The text files of src/, support/, tests/ and bench/ (not bench/results/: recorded runs, kept as
+// printed).
 std::vector<fs::path> sourceFiles() {
   std::vector<fs::path> out;
-  for (const char* dir : {"src", "tests", "bench"}) {
+  for (const char* dir : {"src", "support", "tests", "bench"}) {
     for (auto it = fs::recursive_directory_iterator(kRoot / dir); it != fs::recursive_directory_iterator(); ++it) {
       if (it->is_directory() && it->path() == kRoot / "bench" / "results") {
         it.disable_recursion_pending();

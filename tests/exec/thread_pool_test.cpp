@@ -124,41 +124,73 @@ TEST_CASE("a thread keeps one pool per thread count for its renderers, another t
   CHECK(b.threads() == 2);
 }
 
-TEST_CASE("the pool's timers: runs, tasks, and task time within the threads' run time", "[raster][threads]") {
-  using namespace std::chrono_literals;
-  for (int threads : {1, 2, 3}) {
+namespace {
+// What an observer is told, checked as it is told: run calls on the calling thread, paired and in
+// order; every claim inside a run, on any thread, its tasks adding up to the run's.
+class CheckingObserver final : public RunObserver {
+ public:
+  void runBegins(int tasks) override {
+    callingThreadOnly();
+    if (inRun_) ++errors_;
+    inRun_ = true;
+    claimed_ = 0;
+    runTasks_ = tasks;
+    ++runs_;
+  }
+  void runEnds(int tasks) override {
+    callingThreadOnly();
+    if (!inRun_ || tasks != runTasks_ || claimed_.load() != tasks || open_.load() != 0) ++errors_;
+    inRun_ = false;
+  }
+  int64_t claimBegins(int tasks) override {
+    if (!inRun_ || tasks < 1) ++errors_;
+    open_.fetch_add(1);
+    return tasks * 1000 + 7;  // handed back to claimEnds on this thread
+  }
+  void claimEnds(int tasks, int64_t fromBegin) override {
+    if (fromBegin != tasks * 1000 + 7) ++errors_;
+    claimed_.fetch_add(tasks);
+    open_.fetch_sub(1);
+  }
+  int errors() const { return errors_.load(); }
+  int runs() const { return runs_; }
+
+ private:
+  void callingThreadOnly() {
+    if (caller_ == std::thread::id()) caller_ = std::this_thread::get_id();
+    if (caller_ != std::this_thread::get_id()) ++errors_;
+  }
+  std::thread::id caller_;
+  std::atomic<bool> inRun_{false};
+  std::atomic<int> claimed_{0}, open_{0}, errors_{0};
+  int runTasks_ = 0, runs_ = 0;
+};
+}  // namespace
+
+TEST_CASE("an observer sees each run begin and end around claims that cover its tasks, and changes no task",
+          "[raster][threads]") {
+  for (int threads : {1, 2, 3, 8}) {
     INFO(threads << " threads");
     ThreadPool pool(threads);
-    pool.run(4, [](int) { std::this_thread::sleep_for(1ms); });  // not timed: timing is off
-    CHECK(pool.times().runs == 0);
-    pool.timeRuns(true);
-    pool.run(6, [](int) { std::this_thread::sleep_for(10ms); });
-    pool.run(1, [](int) { std::this_thread::sleep_for(5ms); });  // on the calling thread alone
-    const ThreadPool::Times t = pool.times();
-    CHECK(t.runs == 2);
-    CHECK(t.tasks == 7);
-    // Each task slept at least its time; the tasks ran inside their runs, one at a time per thread.
-    CHECK(t.taskMilliseconds >= 65.0);
-    CHECK(t.taskMilliseconds <= threads * t.runMilliseconds);
-    // Six tasks of 10 ms on `threads` threads take at least ceil(6 / threads) × 10 ms, plus 5.
-    CHECK(t.runMilliseconds >= 10.0 * ((6 + threads - 1) / threads) + 5.0);
-    // The same two runs one by one, in order: each within its time, the first's tasks at least
-    // their 60 ms of sleep and at most every thread's time in it.
-    const std::vector<ThreadPool::RunRecord>& records = pool.runRecords();
-    REQUIRE(records.size() == 2);
-    CHECK(records[0].tasks == 6);
-    CHECK(records[1].tasks == 1);
-    CHECK(records[0].start <= records[0].end);
-    CHECK(records[0].end <= records[1].start);
-    CHECK(records[0].taskNanoseconds >= 60'000'000);
-    CHECK(records[0].taskNanoseconds <= threads * (records[0].end - records[0].start));
-    CHECK(records[1].taskNanoseconds >= 5'000'000);
-    CHECK(double(records[0].end - records[0].start + records[1].end - records[1].start) * 1e-6 ==
-          Approx(t.runMilliseconds).epsilon(1e-9));
-    pool.timeRuns(false);
-    pool.run(2, [](int) {});
-    CHECK(pool.times().runs == 0);  // turned off: started from zero and not counting
-    CHECK(pool.runRecords().empty());
+    CheckingObserver observer;
+    pool.setObserver(&observer);
+    int expectedRuns = 0;
+    for (int run = 0; run < 60; ++run) {
+      const int count = run % 10 == 9 ? 500 + run : run % 7;  // empty, single, small and claimed-in-shares runs
+      std::vector<std::atomic<int>> hits(static_cast<size_t>(count));
+      pool.run(count, [&](int i) { hits[size_t(i)].fetch_add(1); });
+      ++expectedRuns;
+      int wrong = 0;
+      for (const std::atomic<int>& h : hits) wrong += h.load() != 1;
+      REQUIRE(wrong == 0);
+    }
+    // A run whose task throws still ends for the observer before run() rethrows.
+    CHECK_THROWS_AS(pool.run(16, [](int i) { if (i == 3) throw std::runtime_error("task 3"); }), std::runtime_error);
+    ++expectedRuns;
+    pool.setObserver(nullptr);
+    pool.run(4, [](int) {});  // unobserved
+    CHECK(observer.runs() == expectedRuns);
+    CHECK(observer.errors() == 0);
   }
 }
 
@@ -174,19 +206,12 @@ bool sleepersReach(const ThreadPool& pool, int count) {
 }
 }  // namespace
 
-TEST_CASE("idle workers sleep after their spin, and not while the pool is kept awake", "[raster][threads]") {
-  using namespace std::chrono_literals;
+TEST_CASE("idle workers sleep after their spin, and a run wakes them", "[raster][threads]") {
   ThreadPool pool(3);
   pool.run(4, [](int) {});
   CHECK(sleepersReach(pool, 2));  // the spin is a few milliseconds
-  pool.keepAwake(true);
-  pool.run(4, [](int) {});  // wakes them
-  REQUIRE(sleepersReach(pool, 0));
-  std::this_thread::sleep_for(50ms);  // many spins' time
-  CHECK(pool.sleepingWorkers() == 0);
   std::vector<std::atomic<int>> hits(64);
-  pool.run(64, [&](int i) { hits[size_t(i)].fetch_add(1); });  // awake workers still take every task once
+  pool.run(64, [&](int i) { hits[size_t(i)].fetch_add(1); });  // sleeping workers are woken: every task once
   for (const std::atomic<int>& h : hits) CHECK(h.load() == 1);
-  pool.keepAwake(false);
   CHECK(sleepersReach(pool, 2));
 }

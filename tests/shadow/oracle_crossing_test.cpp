@@ -1,4 +1,4 @@
-// The oracle's projective segment-triangle test (tests/support/oracle/projective_crossing.h),
+// The oracle's projective segment-triangle test (support/oracle/projective_crossing.h),
 // checked against direct determinants, against finite stand-ins for triangles with vertices at
 // infinity, and against the winding number of analytically known shadow volumes.
 #include <catch2/catch.hpp>
@@ -8,7 +8,7 @@
 
 #include "scene/primitives.h"
 #include "shadow/shadow_volume.h"
-#include "support/oracle/projective_crossing.h"
+#include "oracle/projective_crossing.h"
 
 using namespace shadowref;
 using namespace shadowref::oracle;

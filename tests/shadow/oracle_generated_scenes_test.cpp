@@ -6,7 +6,7 @@
 #include <chrono>
 
 #include "scene/generators.h"
-#include "support/oracle/oracle.h"
+#include "oracle/oracle.h"
 
 using namespace shadowref;
 using namespace shadowref::oracle;

@@ -8,8 +8,8 @@
 
 #include "scene/primitives.h"
 #include "scene/scene.h"
-#include "support/oracle/oracle.h"
-#include "support/oracle/stencil_comparison.h"
+#include "oracle/oracle.h"
+#include "oracle/stencil_comparison.h"
 
 using namespace shadowref;
 using namespace shadowref::oracle;

@@ -15,7 +15,7 @@
 #include "shadow/light_shadow.h"
 #include "shadow/scene_view.h"
 #include "shadow/shadow_map_accuracy.h"
-#include "support/oracle/oracle.h"
+#include "oracle/oracle.h"
 
 using namespace shadowref;
 

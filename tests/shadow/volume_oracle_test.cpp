@@ -1,5 +1,5 @@
 // The rasterized stencil shadow volumes checked against the independent ray-cast oracle
-// (tests/support/oracle/oracle.h).
+// (support/oracle/oracle.h).
 //
 // The oracle never touches the rasterizer: it counts the signed crossings of the volume polygons
 // along each pixel's ray in double precision. The stencil after a light's volume pass must hold
@@ -21,7 +21,7 @@
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
 #include "shadow/soft_lights.h"
-#include "support/oracle/oracle.h"
+#include "oracle/oracle.h"
 
 using namespace shadowref;
 using oracle::OracleImage;

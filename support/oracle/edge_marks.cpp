@@ -1,4 +1,4 @@
-#include "support/oracle/edge_marks.h"
+#include "oracle/edge_marks.h"
 
 #include <algorithm>
 #include <cmath>

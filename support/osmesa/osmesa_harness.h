@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "conformance/scenario.h"
+#include "osmesa/scenario.h"
 
 namespace shadowref::conformance {
 

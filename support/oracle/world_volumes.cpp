@@ -1,4 +1,4 @@
-#include "support/oracle/world_volumes.h"
+#include "oracle/world_volumes.h"
 
 #include <algorithm>
 #include <tuple>

@@ -1,4 +1,4 @@
-#include "support/oracle/triangle_bvh.h"
+#include "oracle/triangle_bvh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "support/oracle/camera_model.h"
+#include "oracle/camera_model.h"
 
 #include <array>
 #include <cmath>

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "support/oracle/camera_model.h"
+#include "oracle/camera_model.h"
 
 namespace shadowref::oracle {
 

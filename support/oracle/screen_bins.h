@@ -13,8 +13,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "support/oracle/camera_model.h"
-#include "support/oracle/world_volumes.h"
+#include "oracle/camera_model.h"
+#include "oracle/world_volumes.h"
 
 namespace shadowref::oracle {
 

@@ -1,4 +1,4 @@
-#include "support/oracle/screen_bins.h"
+#include "oracle/screen_bins.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "support/oracle/oracle.h"
+#include "oracle/oracle.h"
 
 namespace shadowref::oracle {
 

@@ -1,4 +1,4 @@
-#include "conformance/gl_state.h"
+#include "osmesa/gl_state.h"
 
 namespace shadowref::conformance {
 

@@ -1,5 +1,5 @@
-#include "conformance/osmesa_harness.h"
-#include "conformance/gl_state.h"
+#include "osmesa/osmesa_harness.h"
+#include "osmesa/gl_state.h"
 
 #include <GL/osmesa.h>
 

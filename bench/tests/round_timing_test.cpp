@@ -1,4 +1,4 @@
-// bench/tradeoffs/round_timing.h: the trade-off bench's rounds — the order of each round and a
+// tradeoffs/round_timing.h: the trade-off bench's rounds — the order of each round and a
 // configuration's probes combined — against figures worked out by hand.
 #include "tradeoffs/round_timing.h"
 

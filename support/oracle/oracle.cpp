@@ -1,15 +1,15 @@
-#include "support/oracle/oracle.h"
+#include "oracle/oracle.h"
 
 #include <algorithm>
 #include <cmath>
 #include <thread>
 
 #include "shadow/scene_view.h"
-#include "support/oracle/camera_model.h"
-#include "support/oracle/edge_marks.h"
-#include "support/oracle/screen_bins.h"
-#include "support/oracle/triangle_bvh.h"
-#include "support/oracle/world_volumes.h"
+#include "oracle/camera_model.h"
+#include "oracle/edge_marks.h"
+#include "oracle/screen_bins.h"
+#include "oracle/triangle_bvh.h"
+#include "oracle/world_volumes.h"
 
 namespace shadowref::oracle {
 

@@ -1,4 +1,4 @@
-#include "support/oracle/projective_crossing.h"
+#include "oracle/projective_crossing.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "support/oracle/stencil_comparison.h"
+#include "oracle/stencil_comparison.h"
 
 #include <span>
 #include <sstream>

@@ -17,7 +17,7 @@
 
 #include "scene/scene.h"
 #include "shadow/shadow_volume.h"
-#include "support/oracle/projective_crossing.h"
+#include "oracle/projective_crossing.h"
 
 namespace shadowref::oracle {
 
