@@ -24,7 +24,6 @@
 #include "pool_runs.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
-#include "shadow/shadow_method.h"
 
 namespace shadowref::bench {
 namespace {
@@ -103,7 +102,7 @@ int profileRuns(const Args& args, const Scene& scene) {
       spans.push_back({start, end});
     }
   }
-  std::printf("%s, method %s, %dx%d, %d thread%s, %d frames\n", args.scene.c_str(), name(scene.shadow.method),
+  std::printf("%s, method %s, %dx%d, %d thread%s, %d frames\n", args.scene.c_str(), scene.shadow.method.c_str(),
               scene.width, scene.height, args.threads, args.threads == 1 ? "" : "s", args.frames);
   std::printf("  frame (median)            %9.3f ms\n", median(times.frameMs));
   for (const std::string& pass : times.passOrder)
@@ -123,7 +122,7 @@ int alternate(const Args& args, const Scene& scene) {
   renderFramesInTurn(scene, FrameOptions{}, {.threads = args.threads, .warmUp = 1, .frames = args.frames},
                      [&](int t, const FrameResult& frame, double ms) { (t == 1 ? one : many).add(frame, ms); });
   std::printf("%s, method %s, %dx%d, %d frames at 1 thread and %d at %d in turn, the workers woken before each\n",
-              args.scene.c_str(), name(scene.shadow.method), scene.width, scene.height, args.frames, args.frames,
+              args.scene.c_str(), scene.shadow.method.c_str(), scene.width, scene.height, args.frames, args.frames,
               args.threads);
   std::printf("  median, ms                  1 thread  %2d threads   speed-up\n", args.threads);
   auto line = [](const std::string& what, const std::vector<double>& a, const std::vector<double>& b) {

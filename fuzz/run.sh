@@ -7,6 +7,8 @@
 #   cli            an argument vector for the shadowref command line (render, check, info, compare)
 #   image_compare  PNG / EXR / other bytes read by `shadowref compare`
 #   render_values  the numbers of a fixed valid scene, rendered at 16x16 with every shadow method
+#   differential   a command stream, rendered by the reference pipeline and the fast executor at
+#                  one and three threads, stopping at the first byte that differs
 # Each target is one file fuzz/<target>_fuzz.cpp, linked against static libraries built here with
 # clang++-14 straight from src/ (not through the main CMake): objects are rebuilt only when their
 # source or a header is newer, shared by all targets, two compiles at a time (FUZZ_JOBS).
@@ -21,7 +23,7 @@ cd "$(dirname "$0")/.."
 root=$PWD
 seconds=${1:-60}
 shift || true
-all_targets=(scene_loader obj_import gltf_import cli image_compare render_values)
+all_targets=(scene_loader obj_import gltf_import cli image_compare render_values differential)
 targets=()
 fuzz_flags=()
 for arg in "$@"; do
@@ -50,6 +52,7 @@ libs_of() {
     scene_loader | obj_import | gltf_import) echo scene pipeline ;;
     render_values) echo shadow scene pipeline ;;
     image_compare) echo image pipeline ;;
+    differential) echo pipeline ;;
     cli) echo cli shadow scene image pipeline ;;
     *) echo "fuzz/run.sh: unknown target '$1' (targets: ${all_targets[*]})" >&2; return 1 ;;
   esac
@@ -186,6 +189,15 @@ seeds_render_values() {
   # Sixty-odd numbers of a thousand digits each (~65 KB).
   python3 -c "print('\n'.join('0.' + '0' * 990 + '123456789' if i % 2 else '1' + '0' * 999 for i in range(64)))" \
     > "$out/seeds/render_values/long_digits"
+}
+seeds_differential() {
+  # Random command streams of a few hundred bytes (the seeded generator keeps them the same).
+  python3 -c "
+import random, sys
+r = random.Random(7)
+for i in range(16):
+    open(sys.argv[1] + '/random%02d' % i, 'wb').write(bytes(r.randrange(256) for _ in range(r.randrange(64, 1024))))
+" "$out/seeds/differential"
 }
 
 # The scratch folder each target writes its side files into, and a few files the command line

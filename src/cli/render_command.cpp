@@ -127,6 +127,10 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
       ->allow_extra_args(false);
   render->add_option("--threads", args.threads, "Worker threads (0: all cores); the output does not depend on it")
       ->check(wholeNumberIn(0, 256));
+  render->add_option("--pipeline", args.pipeline,
+                     "'fast' (default: the executor, threaded) or 'reference' (the readable GL pipeline, one thread); "
+                     "both give the same bytes")
+      ->check(CLI::IsMember({"reference", "fast"}));
   render->add_flag("--quiet", args.quiet, "Print nothing but errors");
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
   render->add_option("--dump", args.dumps,
@@ -140,7 +144,8 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
                      "Draw the shadow volumes over the frame: 'volumes' (front faces red, back faces blue, [SV slides]) or "
                      "'volumes-overlay' (translucent red, [DSS article])")
       ->check(CLI::IsMember({"volumes", "volumes-overlay"}));
-  render->add_option("--pixel-history", args.pixelHistory, "x,y: print every fragment that touched that pixel");
+  render->add_option("--pixel-history", args.pixelHistory,
+                     "x,y: print every fragment that touched that pixel (rendered by the reference pipeline)");
 }
 
 int runRender(const RenderArgs& args) {
@@ -150,6 +155,7 @@ int runRender(const RenderArgs& args) {
   // Every flag is checked here, before the render: bad usage exits 2 with nothing written.
   FrameOptions options;
   options.threads = args.threads;
+  options.pipeline = args.pipeline == "reference" ? PipelineKind::Reference : PipelineKind::Fast;
   if (!checkMethodOrReport(args.method)) return kBadInput;
   options.method = args.method;
   std::vector<std::string> outputs = args.outputs;
@@ -180,6 +186,7 @@ int runRender(const RenderArgs& args) {
       return kBadInput;
     }
     options.observer = &history;
+    options.pipeline = PipelineKind::Reference;  // the pixel history's events are the reference's
   }
   const bool dumpPasses = wants(args.dumps, "passes");
   const bool dumpStencil = wants(args.dumps, "stencil");

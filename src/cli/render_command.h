@@ -17,6 +17,7 @@ struct RenderArgs {
   std::vector<std::string> outputs;  // .png / .exr
   std::string method;                // overrides shadow.method
   int threads = 0;                   // 0: all cores
+  std::string pipeline = "fast";     // reference, fast
   bool quiet = false;
   bool stats = false;
   std::vector<std::string> dumps;    // passes, stencil, depth

@@ -381,3 +381,22 @@ TEST_CASE("a range message shows the value as written, not rounded into the rang
   CHECK(r.status == 2);
   CHECK(r.err.find("spot_cutoff: 90.0000001 is outside the allowed range [0, 90]") != std::string::npos);
 }
+
+TEST_CASE("--pipeline reference and --pipeline fast write the same pixels; another name is bad usage", "[cli]") {
+  const fs::path dir = freshDir("pipelines");
+  const std::string ref = (dir / "ref.exr").string(), fast = (dir / "fast.exr").string();
+  const std::string scene = "render scenes/minimal.yaml -D image.width=48 -D image.height=36 --method zfail --quiet ";
+  const Run a = run(scene + "--pipeline reference -o '" + ref + "'");
+  const Run b = run(scene + "--pipeline fast --threads 3 -o '" + fast + "'");
+  INFO(a.err << b.err);
+  REQUIRE(a.status == 0);
+  REQUIRE(b.status == 0);
+  // Every channel (R, G, B, A, Z, stencil) exactly: the reference defines the bytes.
+  const Run same = run("compare '" + ref + "' '" + fast + "'");  // tolerance 0
+  INFO(same.out << same.err);
+  CHECK(same.status == 0);
+  const Run bad = run(scene + "--pipeline softpipe -o '" + (dir / "x.exr").string() + "'");
+  CHECK(bad.status == 2);
+  CHECK(bad.err.find("--pipeline") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "x.exr"));
+}

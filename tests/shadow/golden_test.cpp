@@ -57,6 +57,9 @@ FrameResult renderCase(const GoldenCase& c) {
   FrameOptions options;
   options.method = c.method;
   options.keepStencil = true;
+  // Goldens are written by the reference pipeline, which defines every byte; the fast one is
+  // compared with them.
+  options.pipeline = updatingGoldens() ? PipelineKind::Reference : PipelineKind::Fast;
   return renderFrame(scene, options);
 }
 

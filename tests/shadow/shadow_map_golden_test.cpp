@@ -56,6 +56,8 @@ FrameResult renderGolden(const MapGolden& g) {
   FrameOptions options;
   options.method = g.method;
   options.keepShadowMaps = true;
+  // Written by the reference pipeline, compared with the fast one's frames.
+  options.pipeline = updatingGoldens() ? PipelineKind::Reference : PipelineKind::Fast;
   return renderFrame(scene, options);
 }
 
