@@ -23,6 +23,8 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
   bench->add_option("--method", args.method, methodHelp());
   bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(wholeNumberIn(1, 10000));
   bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(wholeNumberIn(0, 256));
+  bench->add_option("--pipeline", args.pipeline, "'fast' (default) or 'reference'")
+      ->check(CLI::IsMember({"reference", "fast"}));
   bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400");
   bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");
 }
@@ -53,6 +55,7 @@ int runBench(const BenchArgs& args) {
   if (!scene) return kBadInput;
   FrameOptions options;
   options.threads = args.threads;
+  options.pipeline = args.pipeline == "reference" ? PipelineKind::Reference : PipelineKind::Fast;
   if (!checkMethodOrReport(args.method)) return kBadInput;
   options.method = args.method;
   const char* const method = options.method.empty() ? scene->shadow.method.c_str() : options.method.c_str();

@@ -19,6 +19,7 @@ struct BenchArgs {
   std::string method;
   int frames = 5;
   int threads = 0;
+  std::string pipeline = "fast";  // reference, fast
   bool csv = false;
 };
 
