@@ -16,7 +16,6 @@
 #include "exec/compare_dispatch.h"
 #include "exec/depth_lanes.h"
 #include "gl/fragment_ops.h"
-#include "gl/fragment_stage.h"
 #include "gl/per_fragment.h"
 #include "exec/rasterizer.h"
 
@@ -49,71 +48,9 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   }
 }
 
-template <bool watched>
-void FragmentProcessor::processImpl(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
-  if (!scissorTest(state_, x, y)) return;
-  ++stats_.fragments;
-  const size_t at = fb_.index(x, y);
-  FragmentEvent event;
-  if constexpr (watched) {
-    event.x = x;
-    event.y = y;
-    event.drawIndex = watch_->drawIndex;
-    event.drawTag = watch_->drawTag;
-    event.facing = t.facing;
-    if (watch_->hasStencil) event.stencilBefore = event.stencilAfter = fb_.stencil()[at];
-    if (watch_->hasDepth) event.storedDepth = fb_.depthCodec().decode(fb_.depthCodes()[at]);
-    if (watch_->hasColor) event.colorBefore = event.colorAfter = fb_.color()[at];
-  }
-
-  const double z = fragmentDepth(t, x, y, state_);
-  const uint32_t zCode = fb_.depthCodec().encode(z);
-  if constexpr (watched) event.depth = fb_.depthCodec().decode(zCode);
-
-  // Stencil test, then the depth test, then the stencil update ([GL 2.1, §4.1.5, §4.1.6]).
-  const StencilFaceState& sface = state_.stencil[t.facing];
-  uint8_t* stencil = usesStencil_ ? &fb_.stencil()[at] : nullptr;
-  if (stencil && !stencilTest(sface, *stencil)) {
-    ++stats_.stencilFailed;
-    const uint8_t next = writeStencil(*stencil, applyStencilOp(sface.sfail, *stencil, sface.ref), sface.writeMask);
-    stats_.stencilWrites += next != *stencil;
-    *stencil = next;
-    if constexpr (watched) {
-      event.stencilPassed = false;
-      event.depthPassed = false;
-      event.stencilAfter = next;
-      watch_->observer->onFragment(event);
-    }
-    return;
-  }
-
-  bool depthPassed = true;
-  if (usesDepth_) depthPassed = depthTest(state_.depthFunc, zCode, fb_.depthCodes()[at]);
-  if (stencil) {
-    const StencilOp op = depthPassed ? sface.dppass : sface.dpfail;
-    const uint8_t next = writeStencil(*stencil, applyStencilOp(op, *stencil, sface.ref), sface.writeMask);
-    stats_.stencilWrites += next != *stencil;
-    *stencil = next;
-    if constexpr (watched) event.stencilAfter = next;
-  }
-  if (!depthPassed) {
-    ++stats_.depthFailed;
-    if constexpr (watched) {
-      event.depthPassed = false;
-      watch_->observer->onFragment(event);
-    }
-    return;
-  }
-  if (writesDepth_) fb_.depthCodes()[at] = zCode;
-
-  if (writesColor_) {
-    glm::vec4& dst = fb_.color()[at];
-    const glm::dvec4 src = shadeFragment(*shader_, t, x, y, fb_.depthCodec().decode(zCode), e0, e1, e2);
-    dst = writeColor(dst, blend(state_.blend, src, glm::dvec4(dst)), state_.colorMask);
-    ++stats_.colorWrites;
-    if constexpr (watched) event.colorAfter = dst;
-  }
-  if constexpr (watched) watch_->observer->onFragment(event);
+void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
+  const BufferUse use{writesColor_, usesDepth_, writesDepth_, usesStencil_};
+  processFragment(fb_, state_, shader_, use, t, CoveredPixel{x, y, {e0, e1, e2}}, stats_, watch_);
 }
 
 namespace {
@@ -171,7 +108,7 @@ void FragmentProcessor::queueSpan(const TriangleSetup& t, int y, int xl, int xr,
     shadeWaiting();  // the pixel history sees the rest of the triangle's writes up to here
     int64_t ew[3];
     for (int i = 0; i < 3; ++i) ew[i] = e[i] + t.stepX[i] * (wx - xl);
-    processImpl<true>(t, wx, y, ew[0], ew[1], ew[2]);
+    process(t, wx, y, ew[0], ew[1], ew[2]);
     if (wx < xr) {
       for (int i = 0; i < 3; ++i) ew[i] += t.stepX[i];
       runSpan(t, y, wx + 1, xr, ew);
@@ -739,7 +676,7 @@ constexpr int kShadeAtOnce = 32;
 
 }  // namespace
 
-// processImpl<false> for a chunk: every test and write per fragment in GL order; the fragments
+// processFragment for a chunk: every test and write per fragment in GL order; the fragments
 // that reach colour are shaded together and written by writeColors — at once where the chunk has
 // many, otherwise after they have waited for the triangle's next ones (shadeWaiting).
 void FragmentProcessor::generalChunk(const TriangleSetup& t, int y, int x, int n, const uint32_t* codes, int xl,
@@ -931,7 +868,7 @@ int FragmentProcessor::filterChunk(const StencilFaceState& sface, size_t at, int
   return survived;
 }
 
-// Stencil test, depth test, stencil update and depth write for a chunk, as processImpl does them;
+// Stencil test, depth test, stencil update and depth write for a chunk, as processFragment does them;
 // returns how many fragments passed both tests and lists them in `survivors`.
 int FragmentProcessor::testChunk(const TriangleSetup& t, size_t at, int n, const uint32_t* codes, int* survivors) {
   const StencilFaceState& sface = state_.stencil[t.facing];
@@ -1011,8 +948,5 @@ void FragmentProcessor::writeColors(glm::vec4* color, const Offset* offsets, int
     dst = writeColor(dst, blend(b, source(k), glm::dvec4(dst)), state_.colorMask);
   }
 }
-
-template void FragmentProcessor::processImpl<false>(const TriangleSetup&, int, int, int64_t, int64_t, int64_t);
-template void FragmentProcessor::processImpl<true>(const TriangleSetup&, int, int, int64_t, int64_t, int64_t);
 
 }  // namespace shadowref

@@ -31,12 +31,10 @@ class FragmentProcessor {
   FragmentProcessor(Framebuffer& fb, const RenderState& state, const FragmentShader* shader,
                     RasterStats& stats, const PixelWatch* watch);
 
-  void process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
-    if (watch_ && watch_->observer && x == watch_->x && y == watch_->y) [[unlikely]]
-      processImpl<true>(t, x, y, e0, e1, e2);
-    else
-      processImpl<false>(t, x, y, e0, e1, e2);
-  }
+  // One fragment through the reference's per-fragment operations (gl/per_fragment.h,
+  // processFragment), with the pixel history's event at the watched pixel: the definition that the
+  // span loops reproduce.
+  void process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2);
 
   // Every covered pixel of the triangle inside `region`, row by row.
   void processTriangle(const TriangleSetup& t, const Rect& region);
@@ -81,9 +79,6 @@ class FragmentProcessor {
   template <class Offset>
   void writeColors(glm::vec4* color, const Offset* offsets, int count, const glm::dvec4* shaded) const;
 
-  // One body for both paths; the watched one also records a FragmentEvent (pixel history).
-  template <bool Watched>
-  void processImpl(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2);
 
   Framebuffer& fb_;
   const RenderState& state_;

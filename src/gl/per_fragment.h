@@ -2,7 +2,7 @@
 // stencil test -> depth test -> stencil update -> depth write -> shading -> blend -> masked colour
 // write. Each step is one function of fragment_ops.h; processFragment is the sequence, and
 // records the pixel history's FragmentEvent at the watched pixel. The fast executor's one-fragment
-// path (FragmentProcessor::processImpl) is this sequence; its span loops give the same bytes.
+// path (FragmentProcessor::process: the watched pixel) calls it; its span loops give the same bytes.
 #pragma once
 
 #include "gl/coverage.h"
