@@ -377,8 +377,11 @@ bool Renderer::settleRows(PendingDraw& pending, size_t count, int minY, int maxY
   return pending.minY <= pending.maxY;
 }
 
+// Only shaded draws keep or take setups: in the frames drawn here a draw that writes no colour — a
+// shadow map's casters, a light's volumes — draws arrays made for its pass, which no later pass
+// draws again unchanged, and a copy of their positions and indices would be kept for nothing.
 SetupReuse* Renderer::claimReuse(const DrawCall& call) {
-  if (trianglesOf(call) == 0) return nullptr;
+  if (!call.shader || trianglesOf(call) == 0) return nullptr;
   SetupReuse& r = reuse_[{call.vertices.data(), call.vertices.size(), call.indices.data(), call.indices.size()}];
   if (r.claimFlush_ == flushes_) return nullptr;
   r.claimFlush_ = flushes_;

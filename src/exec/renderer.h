@@ -43,9 +43,9 @@ class Renderer {
 
   // Allocates the buffers the state needs (colour when a shader writes, depth when the depth
   // test is on, stencil when the stencil test is on), assembles and sets up the triangles, then
-  // rasterizes them — at once, or with a DeferredDraws alive, when the last one ends. A draw of
-  // arrays drawn before, unchanged, in a state that sets them up alike takes the setups kept then
-  // instead of assembling again (SetupReuse).
+  // rasterizes them — at once, or with a DeferredDraws alive, when the last one ends. A shaded draw
+  // of arrays drawn before, unchanged, in a state that sets them up alike takes the setups kept
+  // then instead of assembling again (SetupReuse).
   void draw(const DrawCall& call);
 
   // glClear (clear.h) as the start of what is drawn next: the buffers are made at once, their rows
@@ -171,8 +171,8 @@ class Renderer {
     int minY = 0, maxY = -1;  // after assembly: the rows its setups span
     uint64_t culled = 0, clipped = 0;  // after assembly: its triangles culled and clipped
   };
-  // SetupReuse: the entry of the call's arrays (made when they are new; nullptr for a draw of no
-  // triangles, or when another draw of this flush has it); whether the call may take the setups
+  // SetupReuse: the entry of the call's arrays (made when they are new; nullptr for a draw without
+  // a shader or of no triangles, or when another draw of this flush has it); whether the call may take the setups
   // kept in it; takes them (a pending draw without assembly); keeps a pending draw's setups in it
   // (pendingSetups_[first, first + count), in pendingBlocks_[firstBlock, endBlock)).
   SetupReuse* claimReuse(const DrawCall& call);
