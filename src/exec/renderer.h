@@ -159,7 +159,8 @@ class Renderer {
     int varyingCount = 0;
     size_t pending = 0;
     SetupReuse* reuse = nullptr;       // where its setups are kept after assembly (SetupReuse)
-    const SetupReuse* kept = nullptr;  // the setups it takes instead of assembling (SetupReuse)
+    const SetupReuse* kept = nullptr;  // the setups it takes instead of assembling (SetupReuse),
+                                       // once verifyQueuedReuse found its contents unchanged
   };
   // Triangles [first, last) of queued draw `draw`, assembled by one group: a group is a run of
   // the pass's triangles, so a large draw (thousands of triangles) is cut between groups
@@ -182,6 +183,7 @@ class Renderer {
                     size_t firstBlock, size_t endBlock);
   void keepQueuedForReuse(size_t groups);
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
+  void verifyQueuedReuse();
   void assembleQueued();
   void rasterizeBand(int y0, int y1, RasterStats& stats) const;
   int64_t candidatePixels(const PendingDraw& draw) const;
@@ -285,6 +287,7 @@ class Renderer {
   std::vector<size_t> queuedGroups_;  // assembleQueued's group g: pieces [queuedGroups_[g], queuedGroups_[g + 1])
   std::vector<AssemblyWorkspace> queuedWs_;
   std::vector<size_t> queuedKept_;  // the queued draws that take kept setups
+  std::vector<uint8_t> queuedSame_;  // verifyQueuedReuse's: whether each one's contents are the kept ones
   std::vector<size_t> queuedKeptFirst_;  // assembleQueued's run r of them: [queuedKeptFirst_[r], queuedKeptFirst_[r + 1])
   // A queued draw whose setups are to be kept in its SetupReuse, with its pieces' counts and the
   // groups they were assembled in (their blocks).
