@@ -202,13 +202,17 @@ void Renderer::draw(const DrawCall& call) {
   stats_.trianglesIn += triangleCount;
   SetupReuse* const reuse = claimReuse(call);
   const bool queue = pool_ && triangleCount > 0 && deferDepth_ == 1 && keptDepth_ == 1;
+  if (queue && reuse && reuse->kept_ && setsUpAlike(reuse->state_, *call.state)) {
+    // Its contents are compared at the flush, on the threads (verifyQueuedReuse); its indices are
+    // checked now, in case they changed.
+    checkIndices(call);
+    queueAssembly(call, planes, varyingCount);
+    queued_.back().kept = reuse;
+    queued_.back().reuse = reuse;  // keeps its setups there if it is assembled after all
+    return;
+  }
   if (reuse && canReuse(*reuse, call)) {  // its indices are those checked when its setups were kept
     ++drawsReusingSetups_;
-    if (queue) {
-      queueAssembly(call, planes, varyingCount);
-      queued_.back().kept = reuse;
-      return;
-    }
     drawKeptSetups(call, *reuse);
     if (deferDepth_ == 0) flush();
     return;
@@ -318,8 +322,11 @@ bool Renderer::settleRows(PendingDraw& pending, size_t count, int minY, int maxY
   return pending.minY <= pending.maxY;
 }
 
+// Only shaded draws keep or take setups: in the frames drawn here a draw that writes no colour — a
+// shadow map's casters, a light's volumes — draws arrays made for its pass, which no later pass
+// draws again unchanged, and a copy of their positions and indices would be kept for nothing.
 SetupReuse* Renderer::claimReuse(const DrawCall& call) {
-  if (trianglesOf(call) == 0) return nullptr;
+  if (!call.shader || trianglesOf(call) == 0) return nullptr;
   SetupReuse& r = reuse_[{call.vertices.data(), call.vertices.size(), call.indices.data(), call.indices.size()}];
   if (r.claimFlush_ == flushes_) return nullptr;
   r.claimFlush_ = flushes_;
@@ -374,7 +381,27 @@ void Renderer::queueAssembly(const DrawCall& call, const ClipPlanes& planes, int
   pending_.push_back(pendingDrawFor(call));
 }
 
+// The queued draws that would take kept setups, their contents compared with the kept copies on
+// the threads (a few hundred kilobytes a pass on the calling thread held the other up): a draw
+// whose arrays changed is assembled with the others after all.
+void Renderer::verifyQueuedReuse() {
+  queuedKept_.clear();
+  for (size_t d = 0; d < queued_.size(); ++d)
+    if (queued_[d].kept) queuedKept_.push_back(d);
+  if (queuedKept_.empty()) return;
+  queuedSame_.assign(queuedKept_.size(), 0);
+  pool_->run(int(queuedKept_.size()), [&](int k) {
+    const QueuedAssembly& q = queued_[queuedKept_[size_t(k)]];
+    queuedSame_[size_t(k)] = q.kept->sameContents(q.call.vertices, q.call.indices);
+  });
+  for (size_t k = 0; k < queuedKept_.size(); ++k) {
+    if (queuedSame_[k]) ++drawsReusingSetups_;
+    else queued_[queuedKept_[k]].kept = nullptr;
+  }
+}
+
 void Renderer::assembleQueued() {
+  verifyQueuedReuse();
   // The pass's triangles, draw after draw, cut into runs, a few per thread, each assembled into
   // one workspace by one task: one pool run for the whole pass instead of one or two per draw, one
   // block per group (a volume pass may queue hundreds of small draws, or a dozen large ones). The

@@ -44,9 +44,9 @@ class Renderer {
 
   // Allocates the buffers the state needs (colour when a shader writes, depth when the depth
   // test is on, stencil when the stencil test is on), assembles and sets up the triangles, then
-  // rasterizes them — at once, or with a DeferredDraws alive, when the last one ends. A draw of
-  // arrays drawn before, unchanged, in a state that sets them up alike takes the setups kept then
-  // instead of assembling again (SetupReuse).
+  // rasterizes them — at once, or with a DeferredDraws alive, when the last one ends. A shaded draw
+  // of arrays drawn before, unchanged, in a state that sets them up alike takes the setups kept
+  // then instead of assembling again (SetupReuse).
   void draw(const DrawCall& call);
 
   // glClear (clear.h) as the start of what is drawn next: the buffers are made at once, their rows
@@ -160,7 +160,8 @@ class Renderer {
     int varyingCount = 0;
     size_t pending = 0;
     SetupReuse* reuse = nullptr;       // where its setups are kept after assembly (SetupReuse)
-    const SetupReuse* kept = nullptr;  // the setups it takes instead of assembling (SetupReuse)
+    const SetupReuse* kept = nullptr;  // the setups it takes instead of assembling (SetupReuse),
+                                       // once verifyQueuedReuse found its contents unchanged
   };
   // Triangles [first, last) of queued draw `draw`, assembled by one group: a group is a run of
   // the pass's triangles, so a large draw (thousands of triangles) is cut between groups
@@ -172,8 +173,8 @@ class Renderer {
     int minY = 0, maxY = -1;  // after assembly: the rows its setups span
     uint64_t culled = 0, clipped = 0;  // after assembly: its triangles culled and clipped
   };
-  // SetupReuse: the entry of the call's arrays (made when they are new; nullptr for a draw of no
-  // triangles, or when another draw of this flush has it); whether the call may take the setups
+  // SetupReuse: the entry of the call's arrays (made when they are new; nullptr for a draw without
+  // a shader or of no triangles, or when another draw of this flush has it); whether the call may take the setups
   // kept in it; takes them (a pending draw without assembly); keeps a pending draw's setups in it
   // (pendingSetups_[first, first + count), in pendingBlocks_[firstBlock, endBlock)).
   SetupReuse* claimReuse(const DrawCall& call);
@@ -183,6 +184,7 @@ class Renderer {
                     size_t firstBlock, size_t endBlock);
   void keepQueuedForReuse(size_t groups);
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
+  void verifyQueuedReuse();
   void assembleQueued();
   void rasterizeBand(int y0, int y1, RasterStats& stats) const;
   int64_t candidatePixels(const PendingDraw& draw) const;
@@ -286,6 +288,7 @@ class Renderer {
   std::vector<size_t> queuedGroups_;  // assembleQueued's group g: pieces [queuedGroups_[g], queuedGroups_[g + 1])
   std::vector<AssemblyWorkspace> queuedWs_;
   std::vector<size_t> queuedKept_;  // the queued draws that take kept setups
+  std::vector<uint8_t> queuedSame_;  // verifyQueuedReuse's: whether each one's contents are the kept ones
   std::vector<size_t> queuedKeptFirst_;  // assembleQueued's run r of them: [queuedKeptFirst_[r], queuedKeptFirst_[r + 1])
   // A queued draw whose setups are to be kept in its SetupReuse, with its pieces' counts and the
   // groups they were assembled in (their blocks).

@@ -48,7 +48,8 @@ struct SetupReuseKeyHash {
 //  - its state sets triangles up alike (setsUpAlike).
 // Setups are a function of these alone, so the same setups, the same bytes. A draw that clipped a
 // triangle keeps nothing: the vertices clipping makes (their varyings interpolated then) last only
-// until its flush. One draw per flush keeps or takes an entry.
+// until its flush. One draw per flush keeps or takes an entry, and only a draw with a shader
+// (Renderer::claimReuse).
 class SetupReuse {
  public:
   bool holdsSetups() const { return kept_; }

@@ -740,12 +740,13 @@ struct Redrawn {
   std::vector<ClipVertex> vertices =
       windowTriangles(state.viewport, {{1, 1, 0.5}, {7, 1, 0.5}, {1, 7, 0.5}, {17, 1, 0.5}, {23, 1, 0.5}, {17, 7, 0.5}});
   std::vector<uint32_t> indices = {0, 1, 2};
+  const ConstantColorShader shader{glm::dvec4(0.5, 0.25, 1.0, 1.0)};  // only shaded draws keep setups
   Renderer renderer;
   uint64_t reusedBefore = 0;
 
   explicit Redrawn(int threads = 1) : renderer(fb, threads) {
     clearStencil(fb, state, 0);
-    renderer.draw({.state = &state, .vertices = vertices, .indices = indices});
+    renderer.draw({.state = &state, .vertices = vertices, .indices = indices, .shader = &shader});
     reusedBefore = renderer.drawsReusingSetups();
   }
   // The second draw's picture, with the first draw's call but for what `change` changes (it may
@@ -753,7 +754,7 @@ struct Redrawn {
   std::string redraw(const std::function<void(DrawCall&, RenderState&)>& change) {
     clearStencil(fb, state, 0);
     RenderState s = state;
-    DrawCall call{.state = &s, .vertices = vertices, .indices = indices};
+    DrawCall call{.state = &s, .vertices = vertices, .indices = indices, .shader = &shader};
     change(call, s);
     renderer.draw(call);
     return stencilPicture(fb);
@@ -763,7 +764,8 @@ struct Redrawn {
     clearStencil(fb, state, 0);
     {
       const DeferredDraws deferred(renderer, DeferredDraws::Geometry::Kept);
-      for (int i = 0; i < draws; ++i) renderer.draw({.state = &state, .vertices = vertices, .indices = indices});
+      for (int i = 0; i < draws; ++i)
+        renderer.draw({.state = &state, .vertices = vertices, .indices = indices, .shader = &shader});
     }
     return stencilPicture(fb);
   }
@@ -798,7 +800,7 @@ TEST_CASE("a pass that takes the kept setups gives the bytes and counts of assem
         INFO("seed " << seed << ", " << threads << " threads, queued " << queued);
         RasterStats stats;
         const Framebuffer fb = renderTwoPasses(q, threads, queued, false, stats, reused);
-        CHECK(reused == 3);  // the second pass's soups and grid
+        CHECK(reused == 1);  // the second pass's grid; the soups cross the near plane (clipped: kept nothing)
         CHECK(sameBytes(reference.color(), fb.color()));
         CHECK(sameBytes(reference.depthCodes(), fb.depthCodes()));
         CHECK(sameBytes(reference.stencil(), fb.stencil()));
@@ -877,9 +879,14 @@ TEST_CASE("kept setups are taken only for the same, unchanged arrays in a state 
     Redrawn o;
     clearStencil(o.fb, o.state, 0);
     Renderer other(o.fb);
-    other.draw({.state = &o.state, .vertices = o.vertices, .indices = o.indices});
+    other.draw({.state = &o.state, .vertices = o.vertices, .indices = o.indices, .shader = &o.shader});
     CHECK(stencilPicture(o.fb) == first);
     CHECK(other.drawsReusingSetups() == 0);
+  }
+  SECTION("the same arrays drawn without a shader (no colour): assembled") {
+    Redrawn m;
+    CHECK(m.redraw([](DrawCall& c, RenderState&) { c.shader = nullptr; }) == first);
+    CHECK(m.reused() == 0);
   }
   SECTION("queued on two threads: taken") {
     Redrawn m(2);
@@ -901,15 +908,16 @@ TEST_CASE("kept setups are taken only for the same, unchanged arrays in a state 
 TEST_CASE("a draw that clipped a triangle keeps no setups", "[raster][reuse]") {
   Framebuffer fb(16, 16);
   const RenderState s = coverageCountingState(fb);
+  const ConstantColorShader shader({1.0, 1.0, 1.0, 1.0});
   std::vector<ClipVertex> v = windowTriangles(s.viewport, {{1, 1, 0.5}, {14, 1, 0.5}, {1, 14, 0.5}});
   Renderer r(fb);
-  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = nullptr, .tag = 0});
-  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = nullptr, .tag = 0});
+  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = &shader, .tag = 0});
+  r.draw({.state = &s, .vertices = v, .indices = {}, .shader = &shader, .tag = 0});
   CHECK(r.drawsReusingSetups() == 1);
   std::vector<ClipVertex> crossing = v;
   crossing[2].position.z = -2.0 * crossing[2].position.w;  // behind the near plane
-  r.draw({.state = &s, .vertices = crossing, .indices = {}, .shader = nullptr, .tag = 0});
-  r.draw({.state = &s, .vertices = crossing, .indices = {}, .shader = nullptr, .tag = 0});
+  r.draw({.state = &s, .vertices = crossing, .indices = {}, .shader = &shader, .tag = 0});
+  r.draw({.state = &s, .vertices = crossing, .indices = {}, .shader = &shader, .tag = 0});
   CHECK(r.drawsReusingSetups() == 1);
   CHECK(r.stats().trianglesClipped == 2);
 }
