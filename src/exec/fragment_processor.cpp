@@ -495,7 +495,9 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
       const Block rowBlock = block;  // a copy, as in the span rows below
       const v8u live = (v8u)covered;
-      passed8 -= depthStep<F, false>(depth + rowStart, hasDepth, rowStart, window, row.codes8(window), live, rowBlock);
+      // No row of a depth buffer that does not exist: offsetting its null pointer is undefined.
+      const uint32_t* const stored = hasDepth ? depth + rowStart : nullptr;
+      passed8 -= depthStep<F, false>(stored, hasDepth, rowStart, window, row.codes8(window), live, rowBlock);
       covered8 -= live;
     });
     for (int lane = 0; lane < 8; ++lane) rowsFragments += uint64_t(covered8[lane]);
@@ -508,7 +510,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
       const RowDepth<K> row(t, y, fb.depthCodec(), clamp, lo, hi);
       // Copies for the row: stores through the buffers may alias anything in memory, so values
       // read through the closures would be read again after every store.
-      const uint32_t* const stored = depth + rowStart;
+      const uint32_t* const stored = hasDepth ? depth + rowStart : nullptr;  // (null: no buffer, no row)
       const double* const rowSlopes = slopes;  // (the map pass read it from the closure every step)
       const Block rowBlock = block;
       const Single rowSingle = single;

@@ -382,7 +382,7 @@ TEST_CASE("a range message shows the value as written, not rounded into the rang
   CHECK(r.err.find("spot_cutoff: 90.0000001 is outside the allowed range [0, 90]") != std::string::npos);
 }
 
-TEST_CASE("--pipeline reference and --pipeline fast write the same pixels, another name is bad usage", "[cli]") {
+TEST_CASE("render with the reference and the fast pipeline writes the same pixels, another name is bad usage", "[cli]") {
   const fs::path dir = freshDir("pipelines");
   const std::string ref = (dir / "ref.exr").string(), fast = (dir / "fast.exr").string();
   const std::string scene = "render scenes/minimal.yaml -D image.width=48 -D image.height=36 --method zfail --quiet ";
