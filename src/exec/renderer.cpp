@@ -186,10 +186,7 @@ void Renderer::prepareCorners(const DrawCall& call, const ClipPlanes& planes, Ve
 
 void Renderer::draw(const DrawCall& call) {
   const RenderState& state = *call.state;
-  const bool anyColor = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
-  if (call.shader && anyColor) fb_.ensureColor();
-  if (state.depthTest) fb_.ensureDepth();
-  if (state.stencilTest) fb_.ensureStencil();
+  ensureBuffersFor(fb_, call);  // the reference's rule (primitive_assembly.h)
 
   ++stats_.drawCalls;
   watch_.drawIndex = drawCount_++;

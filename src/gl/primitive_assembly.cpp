@@ -32,6 +32,14 @@ Rect drawRegion(const RenderState& state, const Framebuffer& fb) {
   return Rect{x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
 
+void ensureBuffersFor(Framebuffer& fb, const DrawCall& call) {
+  const RenderState& state = *call.state;
+  const bool anyColor = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+  if (call.shader && anyColor) fb.ensureColor();
+  if (state.depthTest) fb.ensureDepth();
+  if (state.stencilTest) fb.ensureStencil();
+}
+
 size_t trianglesOf(const DrawCall& call) {
   return call.indices.empty() ? call.vertices.size() / 3 : call.indices.size() / 3;
 }

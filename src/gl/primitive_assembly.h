@@ -35,6 +35,11 @@ Rect drawRegion(const RenderState& state, const Framebuffer& fb);
 // (a trailing one or two are ignored, as glDrawArrays ignores an incomplete triangle).
 size_t trianglesOf(const DrawCall& call);
 
+// Makes the buffers a draw needs, from the draw on: colour when a shader writes through a colour
+// mask with a channel on, depth when the depth test is on, stencil when the stencil test is on.
+// A buffer made here holds its initial value (framebuffer.cpp) until cleared.
+void ensureBuffersFor(Framebuffer& fb, const DrawCall& call);
+
 // Every index within the draw's vertices, or std::out_of_range before anything of the draw is
 // assembled (GL leaves an index out of range undefined; shadowref refuses it).
 void checkIndices(const DrawCall& call);

@@ -8,13 +8,7 @@ void ReferencePipeline::clear(const ClearRequest& request) { shadowref::clear(fb
 
 void ReferencePipeline::draw(const DrawCall& call) {
   const RenderState& state = *call.state;
-  // The buffers a draw needs exist from its first draw on: colour when a shader writes through a
-  // colour mask with a channel on, depth when the depth test is on, stencil when the stencil test
-  // is on. A buffer made here holds its initial value (framebuffer.cpp) until cleared.
-  const bool anyColor = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
-  if (call.shader && anyColor) fb_.ensureColor();
-  if (state.depthTest) fb_.ensureDepth();
-  if (state.stencilTest) fb_.ensureStencil();
+  ensureBuffersFor(fb_, call);
 
   ++stats_.drawCalls;
   watch_.drawIndex = drawCount_++;
