@@ -14,6 +14,7 @@ double fragmentDepth(const TriangleSetup& t, int x, int y, const RenderState& st
 }
 
 void interpolateVaryings(const TriangleSetup& t, int64_t e0, int64_t e1, int64_t e2, int count, double* out) {
+  if (count == 0) return;  // a shader that reads none: the vertices' varyings are not touched
   const double b0 = double(e0) * t.v[0].invW;
   const double b1 = double(e1) * t.v[1].invW;
   const double b2 = double(e2) * t.v[2].invW;
