@@ -40,21 +40,6 @@ struct Args {
   bool runs = false, alternate = false;
 };
 
-// Frames timed at one thread count: each frame's time and each pass's, the passes in order.
-struct FrameTimes {
-  std::vector<double> frameMs;
-  std::map<std::string, std::vector<double>> passMs;
-  std::vector<std::string> passOrder;
-
-  void add(const FrameResult& frame, double ms) {
-    frameMs.push_back(ms);
-    for (const PassTiming& t : frame.timings) {
-      if (!passMs.count(t.pass)) passOrder.push_back(t.pass);
-      passMs[t.pass].push_back(t.milliseconds);
-    }
-  }
-};
-
 // Where the threads' time went, per frame on average: inside the pool's runs (and how much of the
 // threads' time there went to tasks rather than waiting), and outside them, where the calling
 // thread works alone. What keeps more threads from as many times the speed of one, apart from
@@ -88,7 +73,7 @@ int profileRuns(const Args& args, const Scene& scene) {
   options.threads = args.threads;
   ThreadPool* pool = threadPoolForThisThread(args.threads);  // the one renderFrame's renderers use
   RunRecorder recorder;
-  FrameTimes times;
+  timing::FrameTimes times;
   std::vector<FrameSpan> spans;
   renderFrame(scene, options);  // warm-up: page in buffers and code
   {
@@ -118,7 +103,7 @@ int profileRuns(const Args& args, const Scene& scene) {
 
 // --alternate: frames at `threads` threads and at one thread in turn (renderFramesInTurn).
 int alternate(const Args& args, const Scene& scene) {
-  FrameTimes one, many;
+  timing::FrameTimes one, many;
   renderFramesInTurn(scene, FrameOptions{}, {.threads = args.threads, .warmUp = 1, .frames = args.frames},
                      [&](int t, const FrameResult& frame, double ms) { (t == 1 ? one : many).add(frame, ms); });
   std::printf("%s, method %s, %dx%d, %d frames at 1 thread and %d at %d in turn, the workers woken before each\n",

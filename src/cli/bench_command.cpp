@@ -32,21 +32,6 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
 namespace {
 std::string sceneName(const BenchArgs& args) { return args.scene.scene.empty() ? "<builtin:room>" : args.scene.scene; }
 
-// Frames timed at one thread count: each frame's time and each pass's, the passes in order.
-struct FrameTimes {
-  std::vector<double> frameMs;
-  std::map<std::string, std::vector<double>> passMs;
-  std::vector<std::string> passOrder;
-
-  void add(const FrameResult& frame, double ms) {
-    frameMs.push_back(ms);
-    for (const PassTiming& t : frame.timings) {
-      if (!passMs.count(t.pass)) passOrder.push_back(t.pass);
-      passMs[t.pass].push_back(t.milliseconds);
-    }
-  }
-};
-
 }  // namespace
 
 int runBench(const BenchArgs& args) {
@@ -59,7 +44,7 @@ int runBench(const BenchArgs& args) {
   if (!checkMethodOrReport(args.method)) return kBadInput;
   options.method = args.method;
   const char* const method = options.method.empty() ? scene->shadow.method.c_str() : options.method.c_str();
-  FrameTimes times;
+  timing::FrameTimes times;
   const int threads = pipelineThreads(options.pipeline, args.threads);
   try {
     renderFrame(*scene, options);  // warm-up: page in buffers and code
