@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
   libglm-dev libopenimageio-dev openimageio-tools
   catch2 libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libosmesa6-dev clang libclang-rt-14-dev gnuplot-nox
@@ -24,8 +24,14 @@ fi
 
 build_dir=${1:-build}
 shift || true
+# ccache keeps the objects of earlier builds, of this checkout or any other: paths are taken
+# relative to the checkout (CCACHE_BASEDIR) and the working directory is not hashed, so a fresh
+# clone in another folder rebuilds from the cache. The compiler and its flags still decide every
+# byte; the cache only skips recompiling what it has already seen.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
+export CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-true}
 if [ ! -f "$build_dir/build.ninja" ] || [ $# -gt 0 ]; then
-  cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null 2>"$build_dir.cmake.log" \
+  cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache "$@" >/dev/null 2>"$build_dir.cmake.log" \
     || { cat "$build_dir.cmake.log" >&2; exit 1; }
 fi
 cmake --build "$build_dir"
