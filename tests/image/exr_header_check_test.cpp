@@ -59,10 +59,79 @@ TEST_CASE("an EXR header cut short or with over-long names is refused", "[image]
   CHECK(checkExrHeaders(kMagic + u32(2) + std::string("c\0int\0", 6) + "ab") == "attribute 'c' has no size");
   // 32 bytes of name: too long unless the version field allows long names.
   const std::string longName(32, 'n');
-  CHECK_FALSE(checkExrHeaders(kMagic + u32(2) + attribute(longName, "int", 0, 0) + '\0').empty());
-  CHECK(checkExrHeaders(kMagic + u32(2 | 0x400) + attribute(longName, "int", 0, 0) + '\0').empty());
-  CHECK(checkExrHeaders(kMagic + u32(2 | 0x1000) + attribute("a", "int", 0, 0) + '\0') ==
+  CHECK_FALSE(checkExrHeaders(kMagic + u32(2) + attribute(longName, "string", 0, 0) + '\0').empty());
+  CHECK(checkExrHeaders(kMagic + u32(2 | 0x400) + attribute(longName, "string", 0, 0) + '\0').empty());
+  CHECK(checkExrHeaders(kMagic + u32(2 | 0x1000) + attribute("a", "string", 0, 0) + '\0') ==
         "the file ends inside its headers");
+}
+
+namespace {
+
+std::string value(const std::string& name, const std::string& type, const std::string& bytes) {
+  return name + '\0' + type + '\0' + u32(std::uint32_t(bytes.size())) + bytes;
+}
+
+std::string box2i(std::int32_t x0, std::int32_t y0, std::int32_t x1, std::int32_t y1) {
+  return u32(std::uint32_t(x0)) + u32(std::uint32_t(y0)) + u32(std::uint32_t(x1)) + u32(std::uint32_t(y1));
+}
+
+// One channel entry: name\0, pixel type, pLinear + 3 reserved bytes, x and y sampling.
+std::string channel(const std::string& name) { return name + '\0' + u32(1) + u32(0) + u32(1) + u32(1); }
+
+}  // namespace
+
+TEST_CASE("an EXR attribute of a known type must have the size OpenEXR reads it with", "[image][hostile]") {
+  const std::string head = kMagic + u32(2);
+  CHECK(checkExrHeaders(head + value("a", "int", u32(7)) + '\0').empty());
+  CHECK(checkExrHeaders(head + value("a", "int", u32(7) + u32(0)) + '\0') ==
+        "attribute 'a' of type int declares 8 bytes; the type holds 4");
+  CHECK(checkExrHeaders(head + value("w", "box2i", u32(0)) + '\0') ==
+        "attribute 'w' of type box2i declares 4 bytes; the type holds 16");
+  // Unknown types are opaque to OpenEXR and read by their size.
+  CHECK(checkExrHeaders(head + value("x", "myType", "abc") + '\0').empty());
+  CHECK(checkExrHeaders(head + value("v", "floatvector", "abcdef") + '\0') ==
+        "attribute 'v' of type floatvector is not a whole number of floats");
+}
+
+TEST_CASE("an EXR channel list, string vector or preview must end where its size says", "[image][hostile]") {
+  const std::string head = kMagic + u32(2);
+  const std::string channels = channel("R") + channel("G") + '\0';
+  CHECK(checkExrHeaders(head + value("channels", "chlist", channels) + '\0').empty());
+  // The list's end marker missing: OpenEXR would read on past the declared size.
+  CHECK(checkExrHeaders(head + value("channels", "chlist", channel("R") + channel("G")) + '\0') ==
+        "attribute 'channels' of type chlist does not end where its size says");
+  // The list ending before its size: OpenEXR would take the rest for the next attribute.
+  CHECK_FALSE(checkExrHeaders(head + value("channels", "chlist", channels + "zz") + '\0').empty());
+  CHECK(checkExrHeaders(head + value("s", "stringvector", u32(2) + "ab" + u32(0)) + '\0').empty());
+  CHECK(checkExrHeaders(head + value("s", "stringvector", u32(2) + "ab" + u32(9) + "c") + '\0') ==
+        "attribute 's' of type stringvector does not end where its size says");
+  CHECK(checkExrHeaders(head + value("p", "preview", u32(1) + u32(2) + std::string(8, 'x')) + '\0').empty());
+  CHECK(checkExrHeaders(head + value("p", "preview", u32(65536) + u32(65536) + std::string(8, 'x')) + '\0') ==
+        "attribute 'p' of type preview does not end where its size says");
+}
+
+TEST_CASE("an EXR whose chunk offset table would not fit in the file is refused", "[image][hostile]") {
+  const std::string head = kMagic + u32(2);
+  const std::string none = value("compression", "compression", std::string(1, '\0'));
+  // 16 scan lines uncompressed: 16 chunks, 128 bytes of offsets, more than this 75-byte header.
+  const std::string small = head + none + value("dataWindow", "box2i", box2i(0, 0, 3, 15)) + '\0';
+  REQUIRE(small.size() == 75);
+  CHECK(checkExrHeaders(small) == "the header's data window needs 16 chunks, more than its 75-byte file can index");
+  // The same with zip (16 lines a chunk): one chunk fits.
+  const std::string zip = value("compression", "compression", std::string(1, '\3'));
+  CHECK(checkExrHeaders(head + zip + value("dataWindow", "box2i", box2i(0, 0, 3, 15)) + '\0').empty());
+  // A data window of 2^31 rows in a few dozen bytes.
+  CHECK_FALSE(
+      checkExrHeaders(head + none + value("dataWindow", "box2i", box2i(0, -1073741824, 0, 1073741823)) + '\0').empty());
+  // Tiled: 1x1 tiles over 16x16 pixels are 256 chunks.
+  const std::string tiled = kMagic + u32(2 | 0x200) + value("dataWindow", "box2i", box2i(0, 0, 15, 15)) +
+                            value("tiles", "tiledesc", u32(1) + u32(1) + std::string(1, '\0')) + '\0';
+  CHECK_THAT(checkExrHeaders(tiled), Catch::Matchers::Contains("needs 16 x 16 tiles"));
+  const std::string tiles4 = kMagic + u32(2 | 0x200) + value("dataWindow", "box2i", box2i(0, 0, 15, 15)) +
+                             value("tiles", "tiledesc", u32(8) + u32(8) + std::string(1, '\0')) + '\0';
+  CHECK(checkExrHeaders(tiles4).empty());
+  CHECK_THAT(checkExrHeaders(kMagic + u32(2 | 0x1000) + value("chunkCount", "int", u32(1000000)) + '\0' + '\0'),
+             Catch::Matchers::Contains("declares 1000000 chunks"));
 }
 
 TEST_CASE("shadowref's own EXRs pass the header walk, and the hostile one is refused before OpenEXR", "[image][hostile]") {
@@ -86,6 +155,10 @@ TEST_CASE("shadowref's own EXRs pass the header walk, and the hostile one is ref
   } catch (const std::runtime_error& e) {
     CHECK_THAT(e.what(), Catch::Matchers::Contains("declares") && Catch::Matchers::Contains("left in the file"));
   }
+  // The fuzzer's case: a channel list without its end marker, after which OpenEXR read a 2 GB
+  // size from inside the next attribute.
+  const std::string overrun = std::string(SHADOWREF_SOURCE_DIR) + "/tests/data/hostile/images/exr_channel_list_overrun.exr";
+  CHECK_THROWS_WITH(readChannelImage(overrun), Catch::Matchers::Contains("does not end where its size says"));
 }
 
 TEST_CASE("readChannelImage reads only regular files within its size limit", "[image][hostile]") {
