@@ -34,6 +34,8 @@ done
 CXX=${CXX:-clang++-14}
 launcher=""
 command -v ccache > /dev/null && launcher=ccache
+# Objects compiled in any checkout on this machine are reused (see scripts/setup.sh).
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$root} CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-true}
 out=$root/build-fuzz
 mkdir -p "$out/obj" "$out/lib" "$out/gen"
 # The build facts the CLI's --version reports, which CMake generates for the real build.
