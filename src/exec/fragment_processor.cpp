@@ -29,8 +29,8 @@ bool addsToStencil(const RenderState& state);
 
 FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
                                      const FragmentShader* shader, RasterStats& stats,
-                                     const PixelWatch* watch)
-    : fb_(fb), state_(state), shader_(shader), stats_(stats), watch_(watch) {
+                                     const PixelWatch* watch, SpanScratch& scratch)
+    : fb_(fb), state_(state), shader_(shader), stats_(stats), watch_(watch), scratch_(scratch) {
   const BufferUse use = bufferUse(fb, state, shader);
   writesColor_ = use.writesColor;
   usesDepth_ = use.usesDepth;
@@ -439,9 +439,9 @@ constexpr int kSlopeRows = 8;
 // triangle's rows in the region can start at or cover — the same operations as RowDepth's, so the
 // same bits — indexed by column; nullptr where the triangle has too few rows or columns for the
 // table to pay. A row then adds three numbers a pixel instead of four and a multiplication (the
-// map pass and the volume sides are bound by their double additions). The table is the calling
-// thread's, valid until its next call.
-const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int bufferWidth) {
+// map pass and the volume sides are bound by their double additions). The table is made in
+// `table` (SpanScratch::columnDepthParts, only grown), valid until its next use.
+const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int bufferWidth, std::vector<double>& table) {
   const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
   if (y1 - y0 + 1 < kSlopeRows || bufferWidth < 8) return nullptr;
   // A band that cuts the triangle: only the columns it covers in these rows. A shadow volume's
@@ -451,7 +451,6 @@ const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int b
                                   : ColumnRange{std::max(t.minX, region.x), std::min(t.maxX, region.x + region.width - 1)};
   const int x0 = columns.first, x1 = columns.last;
   if (x1 - x0 < 16) return nullptr;
-  thread_local std::vector<double> table;
   const int from = x0 - 7;  // a row's last step starts at most seven columns left of x0
   const size_t entries = size_t(x1 + 8 - from);
   if (table.size() < entries) table.resize(entries);  // only grown: resizing down and up again zeroes
@@ -482,7 +481,8 @@ const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int b
 // the dead lanes', and none without a depth buffer (where block writes no depth).
 template <CompareFunc F, RowKind K, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
-                   uint64_t& fragments, uint64_t& failed, const Block& block, const Single& single) {
+                   std::vector<double>& columnTable, uint64_t& fragments, uint64_t& failed, const Block& block,
+                   const Single& single) {
   const uint32_t* const depth = fb.depthCodes().data();
   const bool hasDepth = fb.hasDepth();
   const int width = fb.width();
@@ -502,7 +502,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     });
     for (int lane = 0; lane < 8; ++lane) rowsFragments += uint64_t(covered8[lane]);
   } else {
-    const double* slopes = columnDepthParts(t, region, width);
+    const double* slopes = columnDepthParts(t, region, width, columnTable);
     // Inlined into the row walk: GCC called it once a row, saving and restoring six registers and
     // reloading the closure each time — a cost paid per row of every span.
     auto spanRow = [&, depth, hasDepth, width, slopes](int y, int xl, int xr) __attribute__((always_inline)) {
@@ -563,7 +563,7 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, rowKindOf(t, fb_.depthCodec(), state_.depthClamp),
               [&](auto f, auto kind) {
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
-        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, scratch_.columnDepthParts, fragments, failed,
         [stencil, passDelta, failDelta](size_t at, v8u, v8u, v8u live, v8u pass) {
           v8b bytes;
           std::memcpy(&bytes, stencil + at, sizeof bytes);
@@ -586,7 +586,7 @@ void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region
   uint64_t fragments = 0, failed = 0;
   auto rows = [&](auto f, auto kind, auto write) {
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
-        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, scratch_.columnDepthParts, fragments, failed,
         [depth](size_t at, v8u codes, v8u stored, v8u, v8u pass) {
           if constexpr (decltype(write)::value) {
             const v8u next = selectLanes(pass, codes, stored);
@@ -614,7 +614,7 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
   auto rows = [&](auto f, auto kind, auto write) {
     constexpr bool kWrite = decltype(write)::value;
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
-        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, scratch_.columnDepthParts, fragments, failed,
         [depth, color, value](size_t at, v8u codes, v8u stored, v8u, v8u pass) {
           if constexpr (kWrite) {
             const v8u next = selectLanes(pass, codes, stored);

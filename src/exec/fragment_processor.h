@@ -17,6 +17,8 @@
 // the chunked path.
 #pragma once
 
+#include <vector>
+
 #include "gl/fragment_observer.h"
 #include "gl/fragment_shader.h"
 #include "gl/framebuffer.h"
@@ -26,10 +28,19 @@
 
 namespace shadowref {
 
+// What the span loops reuse from triangle to triangle instead of allocating: owned by the
+// executor (Renderer: one per thread of its pool) and handed to each processor, so that two
+// processors running at once never share one. Its contents are remade for every triangle that uses
+// them: they carry nothing from one triangle to the next, and no byte depends on which thread's
+// scratch a triangle used.
+struct alignas(64) SpanScratch {
+  std::vector<double> columnDepthParts;  // the depths' column parts of one triangle (fragment_processor.cpp)
+};
+
 class FragmentProcessor {
  public:
   FragmentProcessor(Framebuffer& fb, const RenderState& state, const FragmentShader* shader,
-                    RasterStats& stats, const PixelWatch* watch);
+                    RasterStats& stats, const PixelWatch* watch, SpanScratch& scratch);
 
   // One fragment through the reference's per-fragment operations (gl/per_fragment.h,
   // processFragment), with the pixel history's event at the watched pixel: the definition that the
@@ -85,6 +96,7 @@ class FragmentProcessor {
   const FragmentShader* shader_;
   RasterStats& stats_;
   const PixelWatch* watch_;
+  SpanScratch& scratch_;
   bool writesColor_, usesDepth_, writesDepth_, usesStencil_;
   int varyingCount_;
   double depthLo_, depthHi_;
