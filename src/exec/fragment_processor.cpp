@@ -40,7 +40,7 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   depthLo_ = std::min(state.viewport.nearVal, state.viewport.farVal);
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
   if (writesColor_) constantColor_ = shader->constantColor();
-  spanLoop_ = chooseSpanLoop();
+  kernel_ = &kernelFor(drawTraits(fb, state, shader));
   for (const Facing f : {FrontFacing, BackFacing}) {
     const StencilFaceState& face = state.stencil[f];
     discardsUnchanged_[f] = usesStencil_ && face.func != CompareFunc::Always &&
@@ -50,7 +50,7 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
 
 void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
   const BufferUse use{writesColor_, usesDepth_, writesDepth_, usesStencil_};
-  processFragment(fb_, state_, shader_, use, t, CoveredPixel{x, y, {e0, e1, e2}}, stats_, watch_);
+  kDefinition(fb_, state_, shader_, use, t, CoveredPixel{x, y, {e0, e1, e2}}, stats_, watch_);
 }
 
 namespace {
@@ -68,19 +68,51 @@ bool wrapDelta(StencilOp op, uint8_t& delta) {
 
 }  // namespace
 
-FragmentProcessor::SpanLoop FragmentProcessor::chooseSpanLoop() const {
-  const bool allChannels = state_.colorMask[0] && state_.colorMask[1] && state_.colorMask[2] && state_.colorMask[3];
-  if (writesColor_ && constantColor_ && !usesStencil_ && !state_.blend.enabled && allChannels)
-    return SpanLoop::ConstantColor;
-  if (writesColor_ || writesDepth_ || !usesStencil_) {
-    return !writesColor_ && !usesStencil_ ? SpanLoop::DepthOnly : SpanLoop::General;
-  }
-  return addsToStencil(state_) ? SpanLoop::StencilCount : SpanLoop::General;
+DrawTraits drawTraits(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader) {
+  DrawTraits d;
+  d.use = bufferUse(fb, state, shader);
+  d.constantColor = d.use.writesColor && shader->constantColor() != nullptr;
+  d.blends = state.blend.enabled;
+  d.allChannels = state.colorMask[0] && state.colorMask[1] && state.colorMask[2] && state.colorMask[3];
+  d.stencilAdds = addsToStencil(state);
+  return d;
+}
+
+namespace {
+bool countsStencil(const DrawTraits& d) {
+  return !d.use.writesColor && !d.use.writesDepth && d.use.usesStencil && d.stencilAdds;
+}
+bool depthOnly(const DrawTraits& d) { return !d.use.writesColor && !d.use.usesStencil; }
+bool oneColor(const DrawTraits& d) {
+  return d.use.writesColor && d.constantColor && !d.use.usesStencil && !d.blends && d.allChannels;
+}
+bool anyState(const DrawTraits&) { return true; }
+}  // namespace
+
+// The first three conditions exclude each other (stencil used, neither stencil nor colour, colour
+// without stencil), so their order is free; the general kernel is last.
+const FragmentProcessor::KernelEntry FragmentProcessor::kKernels[] = {
+    {"countTriangle",
+     "no colour or depth written; the stencil test on, always passing, every depth op adding 0, 1 or 255 modulo 256",
+     countsStencil, &FragmentProcessor::countTriangle, "processFragment", kDefinition},
+    {"depthTriangle", "no colour written and no stencil used", depthOnly, &FragmentProcessor::depthTriangle,
+     "processFragment", kDefinition},
+    {"constantColorTriangle",
+     "one colour for every fragment, no stencil, no blending, every channel written", oneColor,
+     &FragmentProcessor::constantColorTriangle, "processFragment", kDefinition},
+    {"spanTriangle", "any state", anyState, &FragmentProcessor::spanTriangle, "processFragment", kDefinition},
+};
+
+std::span<const FragmentProcessor::KernelEntry> FragmentProcessor::kernelTable() { return kKernels; }
+
+const FragmentProcessor::KernelEntry& FragmentProcessor::kernelFor(const DrawTraits& traits) {
+  for (const KernelEntry& e : kKernels)
+    if (e.appliesTo(traits)) return e;
+  return kKernels[std::size(kKernels) - 1];  // (not reached: the last row applies to any state)
 }
 
 bool FragmentProcessor::onlyAddsToStencil(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader) {
-  const BufferUse use = bufferUse(fb, state, shader);
-  return !use.writesColor && !use.writesDepth && use.usesStencil && addsToStencil(state);
+  return countsStencil(drawTraits(fb, state, shader));
 }
 
 namespace {
@@ -369,11 +401,11 @@ void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, 
 void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& region) {
   const bool watched = watch_ && watch_->observer && watch_->x >= t.minX && watch_->x <= t.maxX &&
                        watch_->y >= t.minY && watch_->y <= t.maxY;
-  if (!watched) {
-    if (spanLoop_ == SpanLoop::StencilCount) return countTriangle(t, region);
-    if (spanLoop_ == SpanLoop::DepthOnly) return depthTriangle(t, region);
-    if (spanLoop_ == SpanLoop::ConstantColor) return constantColorTriangle(t, region);
-  }
+  if (watched) return spanTriangle(t, region);  // queueSpan takes the watched pixel alone
+  (this->*kernel_->kernel)(t, region);
+}
+
+void FragmentProcessor::spanTriangle(const TriangleSetup& t, const Rect& region) {
   rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { queueSpan(t, y, xl, xr, e); });
   shadeWaiting();
 }
