@@ -52,7 +52,7 @@ std::vector<std::vector<uint8_t>>& Renderer::extraStencils(size_t count, size_t 
 }
 
 bool Renderer::countsInAnyOrder() const {
-  if (referencePath_ || !fb_.hasStencil()) return false;
+  if (oneFragmentAtATime_ || !fb_.hasStencil()) return false;
   for (const PendingClear& c : pendingClears_)
     if (c.beforeDraw != 0) return false;  // a clear between draws would count in the middle
   for (const PendingDraw& d : pending_) {

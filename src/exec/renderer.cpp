@@ -15,19 +15,19 @@ namespace shadowref {
 
 
 namespace {
-std::atomic<bool> referencePathForNewRenderers{false};
+std::atomic<bool> oneFragmentAtATimeForNewRenderers{false};
 }  // namespace
 
-void Renderer::useReferencePath(bool on) { referencePathForNewRenderers = on; }
+void Renderer::oneFragmentAtATime(bool on) { oneFragmentAtATimeForNewRenderers = on; }
 
 Renderer::Renderer(Framebuffer& framebuffer, int threads)
-    : fb_(framebuffer), referencePath_(referencePathForNewRenderers) {
+    : fb_(framebuffer), oneFragmentAtATime_(oneFragmentAtATimeForNewRenderers) {
   setThreads(threads);
   rowWork_.reset(fb_.height());
 }
 
 Renderer::Renderer(Framebuffer& framebuffer, std::shared_ptr<ThreadPool> pool)
-    : fb_(framebuffer), referencePath_(referencePathForNewRenderers) {
+    : fb_(framebuffer), oneFragmentAtATime_(oneFragmentAtATimeForNewRenderers) {
   setPool(std::move(pool));
   rowWork_.reset(fb_.height());
 }
@@ -631,7 +631,7 @@ int64_t Renderer::candidatePixels(const PendingDraw& draw) const {
 }
 
 void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const {
-  if (referencePath_) {
+  if (oneFragmentAtATime_) {
     rasterizeTriangle(t, region, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
       fragments.process(t, x, y, e0, e1, e2);
     });

@@ -64,10 +64,12 @@ class Renderer {
   // (framebuffer() and the destructor do the clears still waiting).
   void clear(const ClearRequest& request);
 
-  // The reference path: every fragment of every Renderer made after this call goes through the
-  // one-fragment function the pixel history uses, instead of the span loops. Tests render with
-  // both and require the same bytes; nothing else should switch it.
-  static void useReferencePath(bool on);
+  // For tests of the kernels: renderers made after this call with `on` send every covered pixel
+  // through the one-fragment path (FragmentProcessor::process, which calls the reference's
+  // processFragment), pixel by pixel in rasterizeTriangle's order, instead of the dispatch table's
+  // kernels, and count no flush by triangles; assembly, setup reuse, bands and threads stay the
+  // executor's. Tests render both ways and require the same bytes; nothing else should switch it.
+  static void oneFragmentAtATime(bool on);
 
   Framebuffer& framebuffer() {
     if (deferDepth_ == 0 && !pendingClears_.empty()) flush();
@@ -274,7 +276,7 @@ class Renderer {
   RasterStats stats_;
   PixelWatch watch_;
   uint64_t drawCount_ = 0;
-  bool referencePath_;
+  bool oneFragmentAtATime_;  // oneFragmentAtATime's switch when this renderer was made
   // Per-draw scratch, kept to avoid allocation per call: one assembly workspace per chunk of
   // triangles.
   std::vector<AssemblyWorkspace> assembly_;
