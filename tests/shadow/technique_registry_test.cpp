@@ -122,6 +122,22 @@ TEST_CASE("the keys a technique reads are keys of the scene's shadow section", "
     }
 }
 
+TEST_CASE("TSM reads the shadow map's settings, in their order, and the focus region", "[shadow][registry]") {
+  auto keys = [](const char* name) {
+    const ShadowTechnique* t = findTechnique(name);
+    REQUIRE(t != nullptr);
+    std::vector<std::string> out;
+    for (const TechniqueSetting& s : t->settings) out.emplace_back(s.key);
+    return out;
+  };
+  const std::vector<std::string> map = keys("shadowmap");
+  CHECK(map == std::vector<std::string>{"map_size", "offset_factor", "offset_units", "bias", "back_faces_only", "pcf",
+                                        "compare_fail"});
+  std::vector<std::string> tsm = map;
+  tsm.push_back("focus_region");
+  CHECK(keys("tsm") == tsm);
+}
+
 TEST_CASE("`info` describes the settings the scene's technique reads", "[shadow][registry]") {
   ShadowSettings s;  // the defaults of docs/scene-format.md
   s.method = "none";
