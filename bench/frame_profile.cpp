@@ -49,6 +49,8 @@ int main(int argc, char** argv) {
     const Scene scene = loadScene(file, options);
     FrameOptions frame;
     frame.threads = threads;
+    const std::unique_ptr<PipelineMaker> pipelines = makePipelineMaker(frame.pipeline, threads);
+    frame.pipelines = pipelines.get();  // threads started once, not per frame
     uint64_t fragments = 0;
     for (int i = 0; i <= frames; ++i) fragments = renderFrame(scene, frame).stats.fragments;
     std::printf("%s: %d+1 frames, %llu fragments per frame\n", file.c_str(), frames, (unsigned long long)fragments);

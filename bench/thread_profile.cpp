@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli/timing_stats.h"
+#include "exec/fast_pipeline.h"
 #include "exec/thread_pool.h"
 #include "frames_in_turn.h"
 #include "memory/allocator_tuning.h"
@@ -71,7 +72,9 @@ void printRuns(const RunLayout& layout) {
 int profileRuns(const Args& args, const Scene& scene) {
   FrameOptions options;
   options.threads = args.threads;
-  ThreadPool* pool = threadPoolForThisThread(args.threads);  // the one renderFrame's renderers use
+  const FastPipelineMaker pipelines(args.threads);
+  options.pipelines = &pipelines;
+  ThreadPool* pool = pipelines.pool();  // the one renderFrame's renderers use
   RunRecorder recorder;
   timing::FrameTimes times;
   std::vector<FrameSpan> spans;

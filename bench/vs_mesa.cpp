@@ -226,6 +226,8 @@ int runWorker(const std::string& engine, int threads, int frames, const SceneCas
   if (engine == "shadowref") {
     FrameOptions options;
     options.threads = threads;
+    const std::unique_ptr<PipelineMaker> pipelines = makePipelineMaker(PipelineKind::Fast, threads);
+    options.pipelines = pipelines.get();  // threads started once, not per frame
     std::optional<FrameResult> last;
     timed([&] {
       last.reset();  // one frame alive at a time, as Mesa keeps one set of buffers
@@ -258,6 +260,8 @@ int runSeriesWorker(int threads, int frames, const std::vector<SceneCase>& cases
   }
   FrameOptions options;
   options.threads = threads;
+  const std::unique_ptr<PipelineMaker> pipelines = makePipelineMaker(PipelineKind::Fast, threads);
+  options.pipelines = pipelines.get();  // threads started once, not per frame
   for (const Scene& scene : scenes)
     for (int w = 0; w < kWarmUpFrames; ++w) renderFrame(scene, options);
   std::vector<FrameTimes> times(scenes.size());

@@ -109,6 +109,8 @@ int probeMain(const std::vector<std::string>& args) {
     options.method = args[1];
     options.threads = std::stoi(args[2]);
     const int frames = std::stoi(args[3]);
+    const std::unique_ptr<PipelineMaker> pipelines = makePipelineMaker(options.pipeline, options.threads);
+    options.pipelines = pipelines.get();  // threads started once, not per frame
     renderFrame(scene, options);  // warm-up: page in buffers and code
     std::vector<double> cpu, wall;
     for (int i = 0; i < frames; ++i) {

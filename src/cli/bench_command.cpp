@@ -46,6 +46,10 @@ int runBench(const BenchArgs& args) {
   const char* const method = options.method.empty() ? scene->shadow.method.c_str() : options.method.c_str();
   timing::FrameTimes times;
   const int threads = pipelineThreads(options.pipeline, args.threads);
+  // One maker for every frame: its threads start once, as in a program that renders frame after
+  // frame, not per frame.
+  const std::unique_ptr<PipelineMaker> pipelines = makePipelineMaker(options.pipeline, args.threads);
+  options.pipelines = pipelines.get();
   try {
     renderFrame(*scene, options);  // warm-up: page in buffers and code
     for (int i = 0; i < args.frames; ++i) {

@@ -52,7 +52,7 @@ std::vector<std::vector<uint8_t>>& Renderer::extraStencils(size_t count, size_t 
 }
 
 bool Renderer::countsInAnyOrder() const {
-  if (referencePath_ || !fb_.hasStencil()) return false;
+  if (oneFragmentAtATime_ || !fb_.hasStencil()) return false;
   for (const PendingClear& c : pendingClears_)
     if (c.beforeDraw != 0) return false;  // a clear between draws would count in the middle
   for (const PendingDraw& d : pending_) {
@@ -155,14 +155,14 @@ void Renderer::countByTriangles() {
   std::vector<std::vector<uint8_t>>& extra = extraStencils(size_t(tasks - 1), pixels);
   countTasks_.assign(size_t(tasks), CountTask{});
   std::atomic<int> nextRun{0};
-  auto countRuns = [&](int task) {
+  auto countRuns = [&](int task, int thread) {
     uint8_t* const target = task == 0 ? fb_.stencil().data() : extra[size_t(task - 1)].data();
     CountTask& mine = countTasks_[size_t(task)];
     for (int r; (r = nextRun.fetch_add(1, std::memory_order_relaxed)) < runCount;) {
       for (size_t p = countRunFirst_[size_t(r)]; p < countRunFirst_[size_t(r) + 1]; ++p) {
         const CountPiece& piece = countPieces_[p];
         const PendingDraw& draw = pending_[piece.draw];
-        FragmentProcessor fragments(fb_, draw.state, draw.shader, mine.stats, nullptr);
+        FragmentProcessor fragments(fb_, draw.state, draw.shader, mine.stats, nullptr, scratch_[size_t(thread)]);
         fragments.countInto(target);
         for (size_t i = piece.first; i < piece.last; ++i) rasterizeOne(*pendingSetups_[i], draw.region, fragments);
         mine.minY = std::min(mine.minY, draw.minY);
@@ -172,7 +172,7 @@ void Renderer::countByTriangles() {
   };
 
   try {
-    pool_->run(tasks, countRuns);
+    pool_->runOnThreads(tasks, countRuns);
   } catch (...) {
     for (size_t k = 0; k + 1 < size_t(tasks); ++k) std::fill(extra[k].begin(), extra[k].end(), uint8_t(0));
     throw;
@@ -198,7 +198,7 @@ void Renderer::collectBandEntries(int y0, int y1, std::vector<CountEntry>& entri
 // Entries [first, last) of a band of rows [y0, y1], each rasterized inside those rows with its
 // own draw's state, counted into `target`: the band's own setups, or some its task left to others.
 void Renderer::countEntries(const std::vector<CountEntry>& entries, uint32_t first, uint32_t last, int y0, int y1,
-                            uint8_t* target, RasterStats& stats) const {
+                            uint8_t* target, RasterStats& stats, SpanScratch& scratch) const {
   std::optional<FragmentProcessor> fragments;
   uint32_t current = std::numeric_limits<uint32_t>::max();
   Rect band;
@@ -209,7 +209,7 @@ void Renderer::countEntries(const std::vector<CountEntry>& entries, uint32_t fir
     if (e.draw != current) {
       current = e.draw;
       const PendingDraw& draw = pending_[current];
-      fragments.emplace(fb_, draw.state, draw.shader, stats, nullptr);
+      fragments.emplace(fb_, draw.state, draw.shader, stats, nullptr, scratch);
       fragments->countInto(target);
       band = regionInRows(draw.region, y0, y1);
     }
@@ -238,14 +238,15 @@ void Renderer::countByBands(int minY, int maxY) {
   // Setups a claim takes: a kClaimShare-th of a band's share of those left, so that the last
   // claims, small, end the threads together.
   auto claimSize = [bands](uint32_t left) { return std::max<uint32_t>(1, left / uint32_t(kClaimShare * bands)); };
-  auto countBand = [&](int task) {
+  auto countBand = [&](int task, int thread) {
+    SpanScratch& scratch = scratch_[size_t(thread)];
     CountBand& own = countBands_[size_t(task)];
     CountTask& mine = countTasks_[size_t(task)];
     const auto [y0, y1] = rowsOf(task);
     collectBandEntries(y0, y1, own.entries);
     own.claims.open(uint32_t(own.entries.size()));
     for (uint32_t first, last; own.claims.claimFront(claimSize(own.claims.left()), first, last);)
-      countEntries(own.entries, first, last, y0, y1, fb_.stencil().data(), mine.stats);
+      countEntries(own.entries, first, last, y0, y1, fb_.stencil().data(), mine.stats, scratch);
     for (;;) {
       int from = -1;
       uint32_t most = 0;
@@ -259,7 +260,7 @@ void Renderer::countByBands(int minY, int maxY) {
       if (!countBands_[size_t(from)].claims.claimBack(claimSize(most), first, last)) continue;
       const auto [b0, b1] = rowsOf(from);
       const std::vector<CountEntry>& entries = countBands_[size_t(from)].entries;
-      countEntries(entries, first, last, b0, b1, extra[size_t(task)].data(), mine.stats);
+      countEntries(entries, first, last, b0, b1, extra[size_t(task)].data(), mine.stats, scratch);
       // The sum adds only the rows these setups reach, not the whole band's: the last setups of a
       // band often cover only a few of its rows.
       for (uint32_t k = first; k < last; ++k) {
@@ -271,7 +272,7 @@ void Renderer::countByBands(int minY, int maxY) {
   };
 
   try {
-    pool_->run(bands, countBand);
+    pool_->runOnThreads(bands, countBand);
   } catch (...) {
     for (size_t k = 0; k < size_t(bands); ++k) std::fill(extra[k].begin(), extra[k].end(), uint8_t(0));
     throw;

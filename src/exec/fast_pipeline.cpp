@@ -4,6 +4,8 @@ namespace shadowref {
 
 FastPipeline::FastPipeline(Framebuffer& fb, int threads) : renderer_(fb, threads) {}
 
+FastPipeline::FastPipeline(Framebuffer& fb, std::shared_ptr<ThreadPool> pool) : renderer_(fb, std::move(pool)) {}
+
 FastPipeline::~FastPipeline() { endPass(); }
 
 void FastPipeline::beginPass() {
@@ -43,8 +45,15 @@ void FastPipeline::forEachIndependent(int count, const std::function<void(int)>&
   renderer_.parallelFor(count, task);
 }
 
+// The shadow maps' pipelines share the frame's pool: they run between its passes, never with them.
 std::unique_ptr<Pipeline> FastPipeline::forFramebuffer(Framebuffer& fb) const {
-  return std::make_unique<FastPipeline>(fb, threads());
+  return std::make_unique<FastPipeline>(fb, renderer_.pool());
+}
+
+FastPipelineMaker::FastPipelineMaker(int threads) : pool_(makeThreadPool(threads > 0 ? threads : defaultThreadCount())) {}
+
+std::unique_ptr<Pipeline> FastPipelineMaker::make(Framebuffer& fb) const {
+  return std::make_unique<FastPipeline>(fb, pool_);
 }
 
 }  // namespace shadowref

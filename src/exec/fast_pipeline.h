@@ -13,7 +13,11 @@ namespace shadowref {
 
 class FastPipeline final : public Pipeline {
  public:
+  // With a pool of its own of `threads` threads (0: all cores).
   FastPipeline(Framebuffer& fb, int threads);
+  // With `pool`'s threads (nullptr: one thread), shared with the pipelines that made it or that it
+  // makes (forFramebuffer, FastPipelineMaker).
+  FastPipeline(Framebuffer& fb, std::shared_ptr<ThreadPool> pool);
   ~FastPipeline() override;
 
   PipelineKind kind() const override { return PipelineKind::Fast; }
@@ -41,6 +45,20 @@ class FastPipeline final : public Pipeline {
   // Open from a pass's first draw or clear to its end: the draws borrow their geometry until then
   // (the draw contract), so they are assembled and rasterized together when it ends.
   std::optional<DeferredDraws> pass_;
+};
+
+// The fast executor's PipelineMaker: its pipelines share the pool it owns.
+class FastPipelineMaker final : public PipelineMaker {
+ public:
+  explicit FastPipelineMaker(int threads);
+  PipelineKind kind() const override { return PipelineKind::Fast; }
+  int threads() const override { return pool_ ? pool_->threadCount() : 1; }
+  std::unique_ptr<Pipeline> make(Framebuffer& fb) const override;
+  // The pool its pipelines render with (nullptr: one thread), for watching its runs (bench).
+  ThreadPool* pool() const { return pool_.get(); }
+
+ private:
+  std::shared_ptr<ThreadPool> pool_;
 };
 
 }  // namespace shadowref

@@ -29,8 +29,8 @@ bool addsToStencil(const RenderState& state);
 
 FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
                                      const FragmentShader* shader, RasterStats& stats,
-                                     const PixelWatch* watch)
-    : fb_(fb), state_(state), shader_(shader), stats_(stats), watch_(watch) {
+                                     const PixelWatch* watch, SpanScratch& scratch)
+    : fb_(fb), state_(state), shader_(shader), stats_(stats), watch_(watch), scratch_(scratch) {
   const BufferUse use = bufferUse(fb, state, shader);
   writesColor_ = use.writesColor;
   usesDepth_ = use.usesDepth;
@@ -40,7 +40,7 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
   depthLo_ = std::min(state.viewport.nearVal, state.viewport.farVal);
   depthHi_ = std::max(state.viewport.nearVal, state.viewport.farVal);
   if (writesColor_) constantColor_ = shader->constantColor();
-  spanLoop_ = chooseSpanLoop();
+  kernel_ = &kernelFor(drawTraits(fb, state, shader));
   for (const Facing f : {FrontFacing, BackFacing}) {
     const StencilFaceState& face = state.stencil[f];
     discardsUnchanged_[f] = usesStencil_ && face.func != CompareFunc::Always &&
@@ -50,7 +50,7 @@ FragmentProcessor::FragmentProcessor(Framebuffer& fb, const RenderState& state,
 
 void FragmentProcessor::process(const TriangleSetup& t, int x, int y, int64_t e0, int64_t e1, int64_t e2) {
   const BufferUse use{writesColor_, usesDepth_, writesDepth_, usesStencil_};
-  processFragment(fb_, state_, shader_, use, t, CoveredPixel{x, y, {e0, e1, e2}}, stats_, watch_);
+  kDefinition(fb_, state_, shader_, use, t, CoveredPixel{x, y, {e0, e1, e2}}, stats_, watch_);
 }
 
 namespace {
@@ -68,19 +68,51 @@ bool wrapDelta(StencilOp op, uint8_t& delta) {
 
 }  // namespace
 
-FragmentProcessor::SpanLoop FragmentProcessor::chooseSpanLoop() const {
-  const bool allChannels = state_.colorMask[0] && state_.colorMask[1] && state_.colorMask[2] && state_.colorMask[3];
-  if (writesColor_ && constantColor_ && !usesStencil_ && !state_.blend.enabled && allChannels)
-    return SpanLoop::ConstantColor;
-  if (writesColor_ || writesDepth_ || !usesStencil_) {
-    return !writesColor_ && !usesStencil_ ? SpanLoop::DepthOnly : SpanLoop::General;
-  }
-  return addsToStencil(state_) ? SpanLoop::StencilCount : SpanLoop::General;
+DrawTraits drawTraits(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader) {
+  DrawTraits d;
+  d.use = bufferUse(fb, state, shader);
+  d.constantColor = d.use.writesColor && shader->constantColor() != nullptr;
+  d.blends = state.blend.enabled;
+  d.allChannels = state.colorMask[0] && state.colorMask[1] && state.colorMask[2] && state.colorMask[3];
+  d.stencilAdds = addsToStencil(state);
+  return d;
+}
+
+namespace {
+bool countsStencil(const DrawTraits& d) {
+  return !d.use.writesColor && !d.use.writesDepth && d.use.usesStencil && d.stencilAdds;
+}
+bool depthOnly(const DrawTraits& d) { return !d.use.writesColor && !d.use.usesStencil; }
+bool oneColor(const DrawTraits& d) {
+  return d.use.writesColor && d.constantColor && !d.use.usesStencil && !d.blends && d.allChannels;
+}
+bool anyState(const DrawTraits&) { return true; }
+}  // namespace
+
+// The first three conditions exclude each other (stencil used, neither stencil nor colour, colour
+// without stencil), so their order is free; the general kernel is last.
+const FragmentProcessor::KernelEntry FragmentProcessor::kKernels[] = {
+    {"countTriangle",
+     "no colour or depth written; the stencil test on, always passing, every depth op adding 0, 1 or 255 modulo 256",
+     countsStencil, &FragmentProcessor::countTriangle, "processFragment", kDefinition},
+    {"depthTriangle", "no colour written and no stencil used", depthOnly, &FragmentProcessor::depthTriangle,
+     "processFragment", kDefinition},
+    {"constantColorTriangle",
+     "one colour for every fragment, no stencil, no blending, every channel written", oneColor,
+     &FragmentProcessor::constantColorTriangle, "processFragment", kDefinition},
+    {"spanTriangle", "any state", anyState, &FragmentProcessor::spanTriangle, "processFragment", kDefinition},
+};
+
+std::span<const FragmentProcessor::KernelEntry> FragmentProcessor::kernelTable() { return kKernels; }
+
+const FragmentProcessor::KernelEntry& FragmentProcessor::kernelFor(const DrawTraits& traits) {
+  for (const KernelEntry& e : kKernels)
+    if (e.appliesTo(traits)) return e;
+  return kKernels[std::size(kKernels) - 1];  // (not reached: the last row applies to any state)
 }
 
 bool FragmentProcessor::onlyAddsToStencil(const Framebuffer& fb, const RenderState& state, const FragmentShader* shader) {
-  const BufferUse use = bufferUse(fb, state, shader);
-  return !use.writesColor && !use.writesDepth && use.usesStencil && addsToStencil(state);
+  return countsStencil(drawTraits(fb, state, shader));
 }
 
 namespace {
@@ -369,11 +401,11 @@ void FragmentProcessor::depthCodes(const TriangleSetup& t, int y, int x, int n, 
 void FragmentProcessor::processTriangle(const TriangleSetup& t, const Rect& region) {
   const bool watched = watch_ && watch_->observer && watch_->x >= t.minX && watch_->x <= t.maxX &&
                        watch_->y >= t.minY && watch_->y <= t.maxY;
-  if (!watched) {
-    if (spanLoop_ == SpanLoop::StencilCount) return countTriangle(t, region);
-    if (spanLoop_ == SpanLoop::DepthOnly) return depthTriangle(t, region);
-    if (spanLoop_ == SpanLoop::ConstantColor) return constantColorTriangle(t, region);
-  }
+  if (watched) return spanTriangle(t, region);  // queueSpan takes the watched pixel alone
+  (this->*kernel_->kernel)(t, region);
+}
+
+void FragmentProcessor::spanTriangle(const TriangleSetup& t, const Rect& region) {
   rasterizeSpans(t, region, [&](int y, int xl, int xr, const int64_t* e) { queueSpan(t, y, xl, xr, e); });
   shadeWaiting();
 }
@@ -439,9 +471,9 @@ constexpr int kSlopeRows = 8;
 // triangle's rows in the region can start at or cover — the same operations as RowDepth's, so the
 // same bits — indexed by column; nullptr where the triangle has too few rows or columns for the
 // table to pay. A row then adds three numbers a pixel instead of four and a multiplication (the
-// map pass and the volume sides are bound by their double additions). The table is the calling
-// thread's, valid until its next call.
-const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int bufferWidth) {
+// map pass and the volume sides are bound by their double additions). The table is made in
+// `table` (SpanScratch::columnDepthParts, only grown), valid until its next use.
+const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int bufferWidth, std::vector<double>& table) {
   const int y0 = std::max(t.minY, region.y), y1 = std::min(t.maxY, region.y + region.height - 1);
   if (y1 - y0 + 1 < kSlopeRows || bufferWidth < 8) return nullptr;
   // A band that cuts the triangle: only the columns it covers in these rows. A shadow volume's
@@ -451,7 +483,6 @@ const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int b
                                   : ColumnRange{std::max(t.minX, region.x), std::min(t.maxX, region.x + region.width - 1)};
   const int x0 = columns.first, x1 = columns.last;
   if (x1 - x0 < 16) return nullptr;
-  thread_local std::vector<double> table;
   const int from = x0 - 7;  // a row's last step starts at most seven columns left of x0
   const size_t entries = size_t(x1 + 8 - from);
   if (table.size() < entries) table.resize(entries);  // only grown: resizing down and up again zeroes
@@ -482,7 +513,8 @@ const double* columnDepthParts(const TriangleSetup& t, const Rect& region, int b
 // the dead lanes', and none without a depth buffer (where block writes no depth).
 template <CompareFunc F, RowKind K, class Block, class Single>
 void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer& fb, bool clamp, double lo, double hi,
-                   uint64_t& fragments, uint64_t& failed, const Block& block, const Single& single) {
+                   std::vector<double>& columnTable, uint64_t& fragments, uint64_t& failed, const Block& block,
+                   const Single& single) {
   const uint32_t* const depth = fb.depthCodes().data();
   const bool hasDepth = fb.hasDepth();
   const int width = fb.width();
@@ -502,7 +534,7 @@ void depthTestRows(const TriangleSetup& t, const Rect& region, const Framebuffer
     });
     for (int lane = 0; lane < 8; ++lane) rowsFragments += uint64_t(covered8[lane]);
   } else {
-    const double* slopes = columnDepthParts(t, region, width);
+    const double* slopes = columnDepthParts(t, region, width, columnTable);
     // Inlined into the row walk: GCC called it once a row, saving and restoring six registers and
     // reloading the closure each time — a cost paid per row of every span.
     auto spanRow = [&, depth, hasDepth, width, slopes](int y, int xl, int xr) __attribute__((always_inline)) {
@@ -563,7 +595,7 @@ void FragmentProcessor::countTriangle(const TriangleSetup& t, const Rect& region
   withRowKind(usesDepth_ ? state_.depthFunc : CompareFunc::Always, rowKindOf(t, fb_.depthCodec(), state_.depthClamp),
               [&](auto f, auto kind) {
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
-        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, scratch_.columnDepthParts, fragments, failed,
         [stencil, passDelta, failDelta](size_t at, v8u, v8u, v8u live, v8u pass) {
           v8b bytes;
           std::memcpy(&bytes, stencil + at, sizeof bytes);
@@ -586,7 +618,7 @@ void FragmentProcessor::depthTriangle(const TriangleSetup& t, const Rect& region
   uint64_t fragments = 0, failed = 0;
   auto rows = [&](auto f, auto kind, auto write) {
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
-        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, scratch_.columnDepthParts, fragments, failed,
         [depth](size_t at, v8u codes, v8u stored, v8u, v8u pass) {
           if constexpr (decltype(write)::value) {
             const v8u next = selectLanes(pass, codes, stored);
@@ -614,7 +646,7 @@ void FragmentProcessor::constantColorTriangle(const TriangleSetup& t, const Rect
   auto rows = [&](auto f, auto kind, auto write) {
     constexpr bool kWrite = decltype(write)::value;
     depthTestRows<decltype(f)::value, decltype(kind)::value>(
-        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, fragments, failed,
+        t, region, fb_, state_.depthClamp, depthLo_, depthHi_, scratch_.columnDepthParts, fragments, failed,
         [depth, color, value](size_t at, v8u codes, v8u stored, v8u, v8u pass) {
           if constexpr (kWrite) {
             const v8u next = selectLanes(pass, codes, stored);

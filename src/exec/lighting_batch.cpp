@@ -9,7 +9,7 @@
 
 #include "gl/color_columns.h"
 #include "gl/lighting.h"
-#include "gl/lighting_pow.h"
+#include "exec/lighting_pow_column.h"
 
 namespace shadowref {
 

@@ -1,7 +1,8 @@
 // Coverage: walks a set-up triangle over a pixel region and hands every covered pixel centre to
 // a sink, with the three edge-function values there. Two forms of one decision:
 // rasterizeSpans, row intervals, which the renderer uses; and rasterizeTriangle, pixel by pixel,
-// which the reference path (Renderer::useReferencePath) and the pixel history's tests use.
+// which the one-fragment-at-a-time mode (Renderer::oneFragmentAtATime) and the pixel history's
+// tests use.
 //
 // rasterizeTriangle visits the region in 8x8 blocks. A block is skipped when one edge is negative at all four
 // of its corner samples (edge functions are linear, so then it is negative everywhere inside),

@@ -15,14 +15,20 @@ namespace shadowref {
 
 
 namespace {
-std::atomic<bool> referencePathForNewRenderers{false};
+std::atomic<bool> oneFragmentAtATimeForNewRenderers{false};
 }  // namespace
 
-void Renderer::useReferencePath(bool on) { referencePathForNewRenderers = on; }
+void Renderer::oneFragmentAtATime(bool on) { oneFragmentAtATimeForNewRenderers = on; }
 
 Renderer::Renderer(Framebuffer& framebuffer, int threads)
-    : fb_(framebuffer), referencePath_(referencePathForNewRenderers) {
+    : fb_(framebuffer), oneFragmentAtATime_(oneFragmentAtATimeForNewRenderers) {
   setThreads(threads);
+  rowWork_.reset(fb_.height());
+}
+
+Renderer::Renderer(Framebuffer& framebuffer, std::shared_ptr<ThreadPool> pool)
+    : fb_(framebuffer), oneFragmentAtATime_(oneFragmentAtATimeForNewRenderers) {
+  setPool(std::move(pool));
   rowWork_.reset(fb_.height());
 }
 
@@ -45,7 +51,12 @@ void Renderer::clearsNow() {
 
 void Renderer::setThreads(int threads) {
   if (threads <= 0) threads = defaultThreadCount();
-  pool_ = threadPoolForThisThread(threads);
+  if (threads != this->threads() || scratch_.empty()) setPool(makeThreadPool(threads));
+}
+
+void Renderer::setPool(std::shared_ptr<ThreadPool> pool) {
+  pool_ = std::move(pool);
+  scratch_.resize(size_t(threads()));
 }
 
 void Renderer::addSetup(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, Facing facing,
@@ -222,7 +233,7 @@ void Renderer::draw(const DrawCall& call) {
   }
   const size_t chunks = pool_ ? std::max<size_t>(1, (triangleCount + kAssemblyChunk - 1) / kAssemblyChunk) : 1;
   if (assembly_.size() < chunks) assembly_.resize(chunks);
-  prepareCorners(call, planes, corners_, pool_, 0, triangleCount);
+  prepareCorners(call, planes, corners_, pool_.get(), 0, triangleCount);
   for (size_t c = 0; c < chunks; ++c) assembly_[c].corners = &corners_;
   if (chunks == 1) {
     assembleRange(call, 0, triangleCount, planes, varyingCount, assembly_[0]);
@@ -620,7 +631,7 @@ int64_t Renderer::candidatePixels(const PendingDraw& draw) const {
 }
 
 void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, FragmentProcessor& fragments) const {
-  if (referencePath_) {
+  if (oneFragmentAtATime_) {
     rasterizeTriangle(t, region, [&](int x, int y, int64_t e0, int64_t e1, int64_t e2) {
       fragments.process(t, x, y, e0, e1, e2);
     });
@@ -634,7 +645,7 @@ void Renderer::rasterizeOne(const TriangleSetup& t, const Rect& region, Fragment
 // picks its setups out of the compact bounds list itself — 16 bytes a setup read on the band's
 // thread — rather than every setup being binned on one thread before the bands start, and asks
 // for each setup's bytes a few setups before it rasterizes it (BandSetups).
-void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats) const {
+void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats, SpanScratch& scratch) const {
   std::optional<FragmentProcessor> fragments;
   size_t nextClear = 0;
   for (size_t d = 0; d < pending_.size(); ++d) {
@@ -651,7 +662,7 @@ void Renderer::rasterizeBand(int y0, int y1, RasterStats& stats) const {
       if (!started) {
         // The processor writes to fb_ through its own reference: rasterizing changes the
         // framebuffer, not the renderer.
-        fragments.emplace(fb_, draw.state, draw.shader, stats, &draw.watch);
+        fragments.emplace(fb_, draw.state, draw.shader, stats, &draw.watch, scratch);
         started = true;
       }
       rasterizeOne(*pendingSetups_[draw.first + i], band, *fragments);
@@ -765,14 +776,16 @@ void Renderer::flush() {
   const int maxBands = std::min(std::max(threadBands, cacheBands()), (maxY - minY + 1) / kMinBandRows);
   const int bands = maxBands >= 2 ? splitIntoBands(minY, maxY, maxBands) : 1;
   if (bands == 1) {
-    rasterizeBand(minY, maxY, stats_);
+    rasterizeBand(minY, maxY, stats_, scratch_[0]);
   } else if (!parallel) {  // bands for the caches only, in order on this thread
-    for (int b = 0; b < bands; ++b) rasterizeBand(bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1, stats_);
+    for (int b = 0; b < bands; ++b)
+      rasterizeBand(bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1, stats_, scratch_[0]);
   } else {
     // Each band of rows belongs to one task, which replays its setups in submission order.
     bandStats_.assign(size_t(bands), BandStats{});
-    pool_->run(bands, [&](int b) {
-      rasterizeBand(bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1, bandStats_[size_t(b)].stats);
+    pool_->runOnThreads(bands, [&](int b, int thread) {
+      rasterizeBand(bandFirstRow_[size_t(b)], bandFirstRow_[size_t(b) + 1] - 1, bandStats_[size_t(b)].stats,
+                    scratch_[size_t(thread)]);
     });
     for (const BandStats& s : bandStats_) stats_ += s.stats;
   }

@@ -34,13 +34,19 @@ namespace shadowref {
 
 class Renderer {
  public:
+  // With a pool of its own of `threads` threads (0: all cores).
   explicit Renderer(Framebuffer& framebuffer, int threads = 1);
+  // With `pool`'s threads (nullptr: one thread), shared with the renderers that run before and
+  // after this one on the same thread (the frame's and its shadow maps'), never at the same time.
+  Renderer(Framebuffer& framebuffer, std::shared_ptr<ThreadPool> pool);
   ~Renderer();  // does the clears still waiting (clear)
 
-  // Rasterizes bands of rows on `threads` threads (0: all cores). The buffers come out
-  // byte-identical for every thread count.
+  // Rasterizes bands of rows on `threads` threads (0: all cores), a pool of its own from now on
+  // when the count changes. The buffers come out byte-identical for every thread count.
   void setThreads(int threads);
   int threads() const { return pool_ ? pool_->threadCount() : 1; }
+  // The pool it renders with (nullptr: one thread), to share with other renderers.
+  const std::shared_ptr<ThreadPool>& pool() const { return pool_; }
 
   // Allocates the buffers the state needs (colour when a shader writes, depth when the depth
   // test is on, stencil when the stencil test is on), assembles and sets up the triangles, then
@@ -58,10 +64,12 @@ class Renderer {
   // (framebuffer() and the destructor do the clears still waiting).
   void clear(const ClearRequest& request);
 
-  // The reference path: every fragment of every Renderer made after this call goes through the
-  // one-fragment function the pixel history uses, instead of the span loops. Tests render with
-  // both and require the same bytes; nothing else should switch it.
-  static void useReferencePath(bool on);
+  // For tests of the kernels: renderers made after this call with `on` send every covered pixel
+  // through the one-fragment path (FragmentProcessor::process, which calls the reference's
+  // processFragment), pixel by pixel in rasterizeTriangle's order, instead of the dispatch table's
+  // kernels, and count no flush by triangles; assembly, setup reuse, bands and threads stay the
+  // executor's. Tests render both ways and require the same bytes; nothing else should switch it.
+  static void oneFragmentAtATime(bool on);
 
   Framebuffer& framebuffer() {
     if (deferDepth_ == 0 && !pendingClears_.empty()) flush();
@@ -186,7 +194,7 @@ class Renderer {
   void queueAssembly(const DrawCall& call, const ClipPlanes& planes, int varyingCount);
   void verifyQueuedReuse();
   void assembleQueued();
-  void rasterizeBand(int y0, int y1, RasterStats& stats) const;
+  void rasterizeBand(int y0, int y1, RasterStats& stats, SpanScratch& scratch) const;
   int64_t candidatePixels(const PendingDraw& draw) const;
   // A clear waiting for the flush, done before pending_[beforeDraw] (after every draw if there are
   // no more).
@@ -228,7 +236,7 @@ class Renderer {
   };
   void collectBandEntries(int y0, int y1, std::vector<CountEntry>& entries) const;
   void countEntries(const std::vector<CountEntry>& entries, uint32_t first, uint32_t last, int y0, int y1,
-                    uint8_t* target, RasterStats& stats) const;
+                    uint8_t* target, RasterStats& stats, SpanScratch& scratch) const;
   struct CountPiece {
     size_t draw = 0, first = 0, last = 0;  // setups [first, last) of pending_[draw]
   };
@@ -252,7 +260,12 @@ class Renderer {
   // or a shadow map): what draws of the same arrays in later passes take (SetupReuse).
   std::unordered_map<SetupReuseKey, SetupReuse, SetupReuseKeyHash> reuse_;
   uint64_t drawsReusingSetups_ = 0;
-  ThreadPool* pool_ = nullptr;  // the calling thread's (threadPoolForThisThread); nullptr: one thread
+  std::shared_ptr<ThreadPool> pool_;  // nullptr: one thread
+  // The span loops' scratch of each thread of the pool (ThreadPool::runOnThreads), or of the one:
+  // the executor's, not the threads', so that nothing of a draw outlives the renderer.
+  std::vector<SpanScratch> scratch_;
+  // Resizes scratch_ to the pool's threads.
+  void setPool(std::shared_ptr<ThreadPool> pool);
   // A band's counters, on cache lines of their own: the band's thread adds to them per triangle
   // (per chunk of fragments in a shaded pass), and a line shared with the next band's counters
   // would travel between the threads at every addition.
@@ -263,7 +276,7 @@ class Renderer {
   RasterStats stats_;
   PixelWatch watch_;
   uint64_t drawCount_ = 0;
-  bool referencePath_;
+  bool oneFragmentAtATime_;  // oneFragmentAtATime's switch when this renderer was made
   // Per-draw scratch, kept to avoid allocation per call: one assembly workspace per chunk of
   // triangles.
   std::vector<AssemblyWorkspace> assembly_;

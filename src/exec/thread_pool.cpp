@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <map>
 #include <memory>
 
 namespace shadowref {
@@ -38,12 +37,9 @@ inline void relax(int step) {
 }
 }  // namespace
 
-ThreadPool* threadPoolForThisThread(int threads) {
+std::shared_ptr<ThreadPool> makeThreadPool(int threads) {
   if (threads <= 1) return nullptr;
-  thread_local std::map<int, std::unique_ptr<ThreadPool>> pools;
-  std::unique_ptr<ThreadPool>& pool = pools[threads];
-  if (!pool) pool = std::make_unique<ThreadPool>(threads);
-  return pool.get();
+  return std::make_shared<ThreadPool>(threads);
 }
 
 int ThreadPool::claimSize(int left, int threads) { return std::max(1, left / (kClaimShare * threads)); }
@@ -54,7 +50,7 @@ int defaultThreadCount() {
 }
 
 ThreadPool::ThreadPool(int threads) {
-  for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { workerLoop(); });
+  for (int i = 1; i < threads; ++i) workers_.emplace_back([this, i] { workerLoop(i); });
 }
 
 ThreadPool::~ThreadPool() {
@@ -66,7 +62,7 @@ ThreadPool::~ThreadPool() {
   for (std::thread& t : workers_) t.join();
 }
 
-void ThreadPool::drain(uint32_t generation) {
+void ThreadPool::drain(uint32_t generation, int thread) {
   uint64_t ticket = ticket_.load(std::memory_order_acquire);
   for (;;) {
     // count_ may already be the next run's (run() stores it after closing this run's tickets):
@@ -78,7 +74,7 @@ void ThreadPool::drain(uint32_t generation) {
     if (!ticket_.compare_exchange_weak(ticket, ticket + uint64_t(claimed), std::memory_order_acq_rel)) continue;
     // The claimed tasks belong to this run, which cannot end before they are done: task_ and
     // observer_ are its.
-    if (const std::exception_ptr e = runTasks(*task_.load(std::memory_order_relaxed), first, claimed)) {
+    if (const std::exception_ptr e = runTasks(*task_.load(std::memory_order_relaxed), first, claimed, thread)) {
       std::lock_guard lock(mutex_);
       if (!error_) error_ = e;
     }
@@ -105,22 +101,22 @@ uint32_t ThreadPool::waitForWork(uint32_t seen) {
   return generation_.load();
 }
 
-void ThreadPool::workerLoop() {
+void ThreadPool::workerLoop(int thread) {
   uint32_t seen = 0;
   for (;;) {
     seen = waitForWork(seen);
     if (stop_.load(std::memory_order_acquire)) return;
-    drain(seen);
+    drain(seen, thread);
   }
 }
 
-std::exception_ptr ThreadPool::runTasks(const std::function<void(int)>& task, int first, int count) {
+std::exception_ptr ThreadPool::runTasks(const ThreadTask& task, int first, int count, int thread) {
   RunObserver* const observer = observer_.load(std::memory_order_relaxed);
   const int64_t mark = observer ? observer->claimBegins(count) : 0;
   std::exception_ptr error;
   for (int i = first; i < first + count; ++i) {
     try {
-      task(i);
+      task(i, thread);
     } catch (...) {
       if (!error) error = std::current_exception();
     }
@@ -130,11 +126,15 @@ std::exception_ptr ThreadPool::runTasks(const std::function<void(int)>& task, in
 }
 
 void ThreadPool::run(int count, const std::function<void(int)>& task) {
+  runOnThreads(count, [&task](int i, int) { task(i); });
+}
+
+void ThreadPool::runOnThreads(int count, const ThreadTask& task) {
   RunObserver* const observer = observer_.load(std::memory_order_relaxed);
   if (observer) observer->runBegins(count);
   if (workers_.empty() || count <= 1) {
     // The caller's tasks, one after another: one claim.
-    const std::exception_ptr error = count > 0 ? runTasks(task, 0, count) : nullptr;
+    const std::exception_ptr error = count > 0 ? runTasks(task, 0, count, 0) : nullptr;
     if (observer) observer->runEnds(count);
     if (error) std::rethrow_exception(error);
     return;
@@ -153,7 +153,7 @@ void ThreadPool::run(int count, const std::function<void(int)>& task) {
     std::lock_guard lock(mutex_);
     wake_.notify_all();
   }
-  drain(generation);
+  drain(generation, 0);
   for (int step = 0; done_.load(std::memory_order_acquire) < count; ++step) relax(step);
   // Every claim ended (and told the observer) before it counted its tasks done.
   if (observer) observer->runEnds(count);

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -53,6 +54,11 @@ class ThreadPool {
   // are done, rethrowing the first exception a task threw (the other tasks still run). Not
   // reentrant: one run at a time, from one thread.
   void run(int count, const std::function<void(int)>& task);
+  // The same, telling each task the thread that runs it, in [0, threadCount()) (0: the calling
+  // thread). A thread runs one task at a time, so scratch kept per thread number (the renderer's
+  // span scratch) has one user at a time; which thread runs which task changes no byte the tasks
+  // write when the scratch carries nothing from task to task.
+  void runOnThreads(int count, const std::function<void(int task, int thread)>& task);
 
   // Watches the runs (nullptr: none, the default). Set between runs, from the thread that calls
   // run(); the observer must outlive its time set. It changes nothing the tasks do: the bytes are
@@ -66,13 +72,14 @@ class ThreadPool {
   static int claimSize(int left, int threads);
 
  private:
-  void workerLoop();
-  // Claims and runs tasks of run number `generation` until none is left.
-  void drain(uint32_t generation);
+  using ThreadTask = std::function<void(int task, int thread)>;
+  void workerLoop(int thread);
+  // Claims and runs tasks of run number `generation` on thread `thread` until none is left.
+  void drain(uint32_t generation, int thread);
   uint32_t waitForWork(uint32_t seen);
   // Runs tasks [first, first + count) on this thread, each whatever the others threw, as one claim
   // the observer sees; returns the first exception thrown (none: null).
-  std::exception_ptr runTasks(const std::function<void(int)>& task, int first, int count);
+  std::exception_ptr runTasks(const ThreadTask& task, int first, int count, int thread);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -85,7 +92,7 @@ class ThreadPool {
   std::atomic<uint32_t> generation_{0};
   std::atomic<uint64_t> ticket_{0};
   std::atomic<int> done_{0};
-  std::atomic<const std::function<void(int)>*> task_{nullptr};
+  std::atomic<const ThreadTask*> task_{nullptr};
   std::atomic<int> count_{0};
   std::exception_ptr error_;  // the first exception of the current run, under mutex_
   // Read by workers only inside a run (after a claim), which cannot end before they are done, and
@@ -93,12 +100,11 @@ class ThreadPool {
   std::atomic<RunObserver*> observer_{nullptr};
 };
 
-// The pool of `threads` threads that the calling thread keeps for its renderers (nullptr for 1):
-// made at the first call and kept until the calling thread ends, so that a program rendering frame
-// after frame — each frame a Renderer, each shadow map another — starts no threads per frame (a
-// fresh worker also starts cold: its first bands begin late). One per calling thread, because a
-// pool serves one run at a time from one thread; renderers of one thread never run at once.
-ThreadPool* threadPoolForThisThread(int threads);
+// A pool of `threads` threads to own (nullptr for 1 or fewer: everything on the calling thread).
+// The executor's pipelines share one (FastPipelineMaker, FastPipeline::forFramebuffer): a frame's
+// renderer and its shadow maps' never run at once, and a program rendering frame after frame
+// starts no threads per frame (a fresh worker also starts cold: its first bands begin late).
+std::shared_ptr<ThreadPool> makeThreadPool(int threads);
 
 // The number of threads "0 = all cores" means.
 int defaultThreadCount();

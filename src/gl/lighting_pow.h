@@ -5,26 +5,17 @@
 // rewrote it in 2.28), so the same scene could give other bytes on another machine; and it is
 // one call per fragment, the most expensive single step of per-pixel lighting. lightingPow is
 // written with IEEE basic operations only (+, -, *, /, bit fields), so its bits depend on nothing
-// but the input, and it computes four or eight values at once. It is 2^(n·log2 x), with log2 from
-// the atanh series and 2^r from its Taylor series, each taken to below double's rounding: relative
-// error below 1e-13 against a correctly rounded pow (tests/gl/lighting_pow_test.cpp), far below
+// but the input, and the same series run on four or eight values at once (lighting_pow_series.h).
+// It is 2^(n·log2 x), with log2 from the atanh series and 2^r from its Taylor series, each taken
+// to below double's rounding: relative error below 1e-13 against a correctly rounded pow (tests/gl/lighting_pow_test.cpp), far below
 // the float colour buffer's 6e-8. Powers of two and x = 1 are exact.
 #pragma once
 
 namespace shadowref {
 
-using PowLanes = double __attribute__((vector_size(32)));
-
-// x^n for four x: x >= 0 (or NaN), n in [0, 128] (other n: std::pow, lane by lane).
-// Special values as C's pow: x^0 = 1, +0^n = +0, -0^n = -0 for odd whole n (else +0), NaN^n = NaN.
-PowLanes lightingPow(PowLanes x, double n);
-
-// The same for one x: lane 0 of the four-lane function, so scalar and batch shading agree bit for bit.
+// x^n: x >= 0 (or NaN), n in [0, 128] (other n: std::pow). Special values as C's pow: x^0 = 1,
+// +0^n = +0, -0^n = -0 for odd whole n (else +0), NaN^n = NaN. The fast executor's batch form,
+// lightingPowColumn (exec/lighting_pow_column.h), gives every element these bits.
 double lightingPow(double x, double n);
-
-// x[i] = x[i]^n for i < count, each the bits lightingPow(x[i], n) gives. The series are long
-// chains of dependent multiplies and adds; one vector at a time waits on their latency, so this
-// runs several vectors' chains side by side, eight lanes wide where the build has AVX-512.
-void lightingPowColumn(double* x, int count, double n);
 
 }  // namespace shadowref

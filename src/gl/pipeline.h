@@ -75,8 +75,23 @@ class Pipeline {
   virtual std::unique_ptr<Pipeline> forFramebuffer(Framebuffer& fb) const = 0;
 };
 
-// The pipeline of that kind drawing into `fb` (threads: the fast executor's, 0 for every core;
-// the reference ignores it).
+// Makes pipelines of one kind and thread count, framebuffer after framebuffer. What the pipelines
+// run on belongs to the maker and to the pipelines it made (the fast executor's thread pool, shared
+// by them): a program rendering frame after frame from one maker starts its threads once, not per
+// frame. Its pipelines are used from one thread, one pass at a time (a frame's passes and its
+// shadow maps' interleave but never run at once).
+class PipelineMaker {
+ public:
+  virtual ~PipelineMaker() = default;
+  virtual PipelineKind kind() const = 0;
+  virtual int threads() const = 0;
+  virtual std::unique_ptr<Pipeline> make(Framebuffer& fb) const = 0;
+};
+
+// The maker of pipelines of that kind (threads: the fast executor's, 0 for every core; the
+// reference ignores it).
+std::unique_ptr<PipelineMaker> makePipelineMaker(PipelineKind kind, int threads = 1);
+// One pipeline of that kind drawing into `fb`, with threads of its own (makePipelineMaker's).
 std::unique_ptr<Pipeline> makePipeline(PipelineKind kind, Framebuffer& fb, int threads = 1);
 // The threads() of a pipeline that makePipeline(kind, fb, threads) makes, without making one.
 int pipelineThreads(PipelineKind kind, int threads);

@@ -68,7 +68,9 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
   FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}};
   // The pixel history always runs on the reference: its events are the definition.
   const PipelineKind kind = options.observer ? PipelineKind::Reference : options.pipeline;
-  const std::unique_ptr<Pipeline> pipeline = makePipeline(kind, result.framebuffer, options.threads);
+  const std::unique_ptr<Pipeline> pipeline = options.pipelines && !options.observer
+                                                 ? options.pipelines->make(result.framebuffer)
+                                                 : makePipeline(kind, result.framebuffer, options.threads);
   if (!pipeline) throw std::runtime_error(std::string("the ") + name(kind) + " pipeline is not available in this build");
   if (options.observer) pipeline->watchPixel(options.watchX, options.watchY, options.observer);
   technique->render(scene, options, result, *pipeline);

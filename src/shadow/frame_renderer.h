@@ -36,6 +36,10 @@ struct FrameOptions {
   PipelineKind pipeline = PipelineKind::Fast;
   // Rasterizer threads (0: all cores). Every buffer comes out byte-identical for any count.
   int threads = 1;
+  // Where the frame's pipeline comes from: frames rendered one after another from one maker share
+  // its threads (gl/pipeline.h). When set, its kind and threads are the frame's, in place of
+  // `pipeline` and `threads`. nullptr: a pipeline of the frame's own.
+  const PipelineMaker* pipelines = nullptr;
   // Pixel history: every fragment at (x, y) is reported to the observer.
   int watchX = -1, watchY = -1;
   FragmentObserver* observer = nullptr;

@@ -1,6 +1,7 @@
 #include "shadow/shadow_map_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -323,7 +324,7 @@ void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions
 // The techniques of this file (technique_registry.cpp lists them).
 namespace {
 
-constexpr TechniqueSetting kMapSettings[] = {
+constexpr std::array<TechniqueSetting, 7> kMapSettings = {{
     {"map_size", "8 to 8192"},
     {"offset_factor", "a number"},
     {"offset_units", "a number"},
@@ -331,19 +332,20 @@ constexpr TechniqueSetting kMapSettings[] = {
     {"back_faces_only", "true or false"},
     {"pcf", "1 to 15"},
     {"compare_fail", "0 to 1"},
-};
+}};
+
+// `base` and then `more`: a list that extends another keeps its entries and their order.
+template <size_t N>
+constexpr std::array<TechniqueSetting, N + 1> extended(const std::array<TechniqueSetting, N>& base,
+                                                       TechniqueSetting more) {
+  std::array<TechniqueSetting, N + 1> out{};
+  std::copy(base.begin(), base.end(), out.begin());
+  out[N] = more;
+  return out;
+}
 
 // TSM reads the same, and the focus region ([Hempe 2004, §4.1]).
-constexpr TechniqueSetting kTrapezoidalSettings[] = {
-    {"map_size", "8 to 8192"},
-    {"offset_factor", "a number"},
-    {"offset_units", "a number"},
-    {"bias", "a number"},
-    {"back_faces_only", "true or false"},
-    {"pcf", "1 to 15"},
-    {"compare_fail", "0 to 1"},
-    {"focus_region", "between 0 and 1 exclusive"},
-};
+constexpr std::array kTrapezoidalSettings = extended(kMapSettings, {"focus_region", "between 0 and 1 exclusive"});
 
 std::string number(double x) {
   char buf[40];

@@ -19,39 +19,19 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "support/cli_run.h"
+
 namespace fs = std::filesystem;
+using shadowref::testing::CliRun;
+using shadowref::testing::runShadowref;
+using shadowref::testing::slurp;
 
 namespace {
-
-struct Run {
-  int status = -1;
-  std::string err, out;
-};
 
 fs::path scratch() {
   const fs::path dir = fs::temp_directory_path() / ("shadowref-cli-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs the shadowref binary with `args` (shell syntax) in the source folder.
-Run run(const std::string& args) {
-  const fs::path dir = scratch();
-  const std::string cmd = std::string("cd '") + SHADOWREF_SOURCE_DIR + "' && '" + SHADOWREF_CLI + "' " + args + " >'" +
-                          (dir / "out.txt").string() + "' 2>'" + (dir / "err.txt").string() + "'";
-  const int raw = std::system(cmd.c_str());
-  Run r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(dir / "out.txt");
-  r.err = slurp(dir / "err.txt");
-  return r;
 }
 
 std::string writeScene(const std::string& name, const std::string& text) {
@@ -131,7 +111,7 @@ TEST_CASE("render writes the PNG and the EXR it is asked for and exits 0", "[cli
   const std::string png = (dir / "m.png").string(), exr = (dir / "m.exr").string();
   fs::remove(png);
   fs::remove(exr);
-  const Run r = run("render scenes/minimal.yaml -D image.width=64 -D image.height=48 -o '" + png + "' -o '" + exr +
+  const CliRun r = runShadowref("render scenes/minimal.yaml -D image.width=64 -D image.height=48 -o '" + png + "' -o '" + exr +
                     "' --quiet");
   INFO(r.err);
   CHECK(r.status == 0);
@@ -144,7 +124,7 @@ TEST_CASE("a malformed scene is reported as file:line:col with exit 2 and no out
   const std::string scene = writeScene("bad.yaml", "image: {width: 64, height: 48}\ncamera: {fov: 60, nera: 1}\n");
   const fs::path png = scratch() / "bad.png";
   fs::remove(png);
-  const Run r = run("render '" + scene + "' -o '" + png.string() + "'");
+  const CliRun r = runShadowref("render '" + scene + "' -o '" + png.string() + "'");
   CHECK(r.status == 2);
   CHECK(r.err.rfind(scene + ":2:", 0) == 0);  // the line of the typo
   CHECK(r.err.find("nera") != std::string::npos);
@@ -152,15 +132,15 @@ TEST_CASE("a malformed scene is reported as file:line:col with exit 2 and no out
 }
 
 TEST_CASE("a scene file that does not exist is bad input (exit 2)", "[cli]") {
-  const Run r = run("check scenes/no-such-scene.yaml");
+  const CliRun r = runShadowref("check scenes/no-such-scene.yaml");
   CHECK(r.status == 2);
   CHECK(r.err.find("no-such-scene.yaml") != std::string::npos);
 }
 
 TEST_CASE("check validates without rendering: 0 for a good scene, 2 for a bad one", "[cli]") {
-  CHECK(run("check scenes/room.yaml").status == 0);
+  CHECK(runShadowref("check scenes/room.yaml").status == 0);
   const std::string scene = writeScene("nan.yaml", "ambient: [.nan, 0, 0]\n");
-  const Run bad = run("check '" + scene + "'");
+  const CliRun bad = runShadowref("check '" + scene + "'");
   CHECK(bad.status == 2);
   CHECK(bad.err.rfind(scene + ":1:", 0) == 0);
 }
@@ -168,12 +148,12 @@ TEST_CASE("check validates without rendering: 0 for a good scene, 2 for a bad on
 TEST_CASE("bad flags and values are bad usage (exit 2) and write nothing", "[cli]") {
   const fs::path out = scratch() / "flag.png";
   fs::remove(out);
-  CHECK(run("render --no-such-flag").status == 2);
-  CHECK(run("render --method zfial -o '" + out.string() + "'").status == 2);
-  CHECK(run("render -o '" + (scratch() / "x.jpg").string() + "'").status == 2);
-  CHECK(run("render --pixel-history 5 -o '" + out.string() + "'").status == 2);
-  CHECK(run("render --dump-region 1,2,0,4 -o '" + out.string() + "'").status == 2);
-  CHECK(run("render --threads -1").status == 2);
+  CHECK(runShadowref("render --no-such-flag").status == 2);
+  CHECK(runShadowref("render --method zfial -o '" + out.string() + "'").status == 2);
+  CHECK(runShadowref("render -o '" + (scratch() / "x.jpg").string() + "'").status == 2);
+  CHECK(runShadowref("render --pixel-history 5 -o '" + out.string() + "'").status == 2);
+  CHECK(runShadowref("render --dump-region 1,2,0,4 -o '" + out.string() + "'").status == 2);
+  CHECK(runShadowref("render --threads -1").status == 2);
   CHECK_FALSE(fs::exists(out));
   CHECK_FALSE(fs::exists(scratch() / "x.jpg"));
 }
@@ -181,20 +161,20 @@ TEST_CASE("bad flags and values are bad usage (exit 2) and write nothing", "[cli
 TEST_CASE("compare exits 0 for identical images, 1 when they differ, 2 when one cannot be read", "[cli]") {
   const fs::path dir = scratch();
   const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string();
-  REQUIRE(run("render scenes/minimal.yaml -D image.width=32 -D image.height=24 -o '" + a + "' --quiet").status == 0);
-  REQUIRE(run("render scenes/minimal.yaml -D image.width=32 -D image.height=24 -D ambient=[0.9,0.9,0.9] -o '" + b +
+  REQUIRE(runShadowref("render scenes/minimal.yaml -D image.width=32 -D image.height=24 -o '" + a + "' --quiet").status == 0);
+  REQUIRE(runShadowref("render scenes/minimal.yaml -D image.width=32 -D image.height=24 -D ambient=[0.9,0.9,0.9] -o '" + b +
               "' --quiet").status == 0);
-  CHECK(run("compare '" + a + "' '" + a + "'").status == 0);
-  const Run differ = run("compare '" + a + "' '" + b + "'");
+  CHECK(runShadowref("compare '" + a + "' '" + a + "'").status == 0);
+  const CliRun differ = runShadowref("compare '" + a + "' '" + b + "'");
   CHECK(differ.status == 1);
   CHECK(differ.out.find("R") != std::string::npos);
-  CHECK(run("compare '" + a + "' '" + (dir / "missing.exr").string() + "'").status == 2);
+  CHECK(runShadowref("compare '" + a + "' '" + (dir / "missing.exr").string() + "'").status == 2);
 }
 
 TEST_CASE("bench prints the median frame and each pass, at any thread count, and judges none", "[cli]") {
   const std::string scene = "scenes/minimal.yaml -D image.width=64 -D image.height=48";
   for (const char* threads : {"1", "2"}) {
-    const Run r = run("bench " + scene + " --frames 2 --threads " + threads);
+    const CliRun r = runShadowref("bench " + scene + " --frames 2 --threads " + threads);
     INFO(r.out);
     CHECK(r.status == 0);
     CHECK(r.out.find(std::string(", ") + threads + " thread") != std::string::npos);
@@ -202,7 +182,7 @@ TEST_CASE("bench prints the median frame and each pass, at any thread count, and
     CHECK(r.out.find("01-ambient") != std::string::npos);
   }
   // The CSV line: scene, method, threads, width, height, frames, median ms.
-  const Run csv = run("bench " + scene + " --frames 2 --threads 2 --csv");
+  const CliRun csv = runShadowref("bench " + scene + " --frames 2 --threads 2 --csv");
   CHECK(csv.status == 0);
   char method[32] = {};
   int threads = 0, width = 0, height = 0, frames = 0;
@@ -214,17 +194,17 @@ TEST_CASE("bench prints the median frame and each pass, at any thread count, and
   CHECK(height == 48);
   CHECK(frames == 2);
   CHECK(ms > 0.0);
-  CHECK(run("bench " + scene + " --frames 0").status != 0);
+  CHECK(runShadowref("bench " + scene + " --frames 0").status != 0);
 }
 
 TEST_CASE("the --help text lists every subcommand and exits 0", "[cli]") {
-  const Run r = run("--help");
+  const CliRun r = runShadowref("--help");
   CHECK(r.status == 0);
   for (const char* sub : {"render", "check", "info", "compare", "bench"}) CHECK(r.out.find(sub) != std::string::npos);
 }
 
 TEST_CASE("the pixel history (--pixel-history) prints the fragments of the watched pixel in draw order", "[cli]") {
-  const Run r = run("render scenes/minimal.yaml -D image.width=64 -D image.height=48 --method zfail --pixel-history "
+  const CliRun r = runShadowref("render scenes/minimal.yaml -D image.width=64 -D image.height=48 --method zfail --pixel-history "
                     "32,10 -o '" + (scratch() / "h.png").string() + "' --quiet");
   CHECK(r.status == 0);
   CHECK(r.out.find("pixel 32,10") != std::string::npos);
@@ -280,12 +260,12 @@ TEST_CASE("render -o onto the scene file itself is refused with exit 2 and the s
   const fs::path scene = dir / "scene.png";  // a YAML scene under an image name: -o would overwrite it
   const std::string text = "image: {width: 16, height: 12}\n";
   std::ofstream(scene) << text;
-  const Run r = run("render '" + scene.string() + "' -o '" + scene.string() + "'");
+  const CliRun r = runShadowref("render '" + scene.string() + "' -o '" + scene.string() + "'");
   CHECK(r.status == 2);
   CHECK(r.err.find("the scene file itself") != std::string::npos);
   CHECK(slurp(scene) == text);
   // Through another spelling of the same path, too.
-  const Run dotted = run("render '" + scene.string() + "' -o '" + (dir / "." / "scene.png").string() + "'");
+  const CliRun dotted = runShadowref("render '" + scene.string() + "' -o '" + (dir / "." / "scene.png").string() + "'");
   CHECK(dotted.status == 2);
   CHECK(slurp(scene) == text);
   CHECK(entries(dir) == std::vector<std::string>{"scene.png"});
@@ -298,13 +278,13 @@ TEST_CASE("compare refuses an image whose header declares more pixels than its f
   // 30000^2 values are more than the 2^29 any image may have.
   writeLyingPng(png, 30000, 30000);
   REQUIRE(fs::file_size(png) < 100);
-  const Run r = run("compare '" + png.string() + "' '" + png.string() + "'");
+  const CliRun r = runShadowref("compare '" + png.string() + "' '" + png.string() + "'");
   CHECK(r.status == 2);
   CHECK(r.err.find("cannot read '" + png.string() + "'") != std::string::npos);
   CHECK(r.err.find("30000x30000 pixels with 1 channels, more than the limit of 536870912") != std::string::npos);
   // 20000^2 are within it, but 4e8 bytes of pixels do not fit in 1032 times the file's bytes.
   writeLyingPng(png, 20000, 20000);
-  const Run small = run("compare '" + png.string() + "' '" + png.string() + "'");
+  const CliRun small = runShadowref("compare '" + png.string() + "' '" + png.string() + "'");
   CHECK(small.status == 2);
   CHECK(small.err.find("20000x20000 pixels with 1 channels (400000000 bytes of pixels), more than its") !=
         std::string::npos);
@@ -319,13 +299,13 @@ TEST_CASE("render --dump-region is checked before rendering: extreme or outside 
   for (const char* region : {"2147483647,0,2147483647,1", "0,2147483647,1,2147483647", "-2147483648,0,2147483647,1",
                              "64,0,4,4", "0,48,4,4", "-4,0,4,4", "0,0,99999999999,1", "1,2,3", "a,b,c,d"}) {
     INFO(region);
-    const Run r = run("render " + scene + " --dump-region " + region);
+    const CliRun r = runShadowref("render " + scene + " --dump-region " + region);
     CHECK(r.status == 2);
     CHECK(r.err.find("--dump-region") != std::string::npos);
     CHECK(entries(dir).empty());
   }
   // A region reaching past the image is clipped; its ends do not overflow.
-  const Run clipped = run("render " + scene + " --dump-region 60,0,2147483647,2 --quiet");
+  const CliRun clipped = runShadowref("render " + scene + " --dump-region 60,0,2147483647,2 --quiet");
   CHECK(clipped.status == 0);
   CHECK(clipped.out.find("stencil x 60..63, y 0..1") != std::string::npos);
   CHECK(clipped.out.find("clipped") != std::string::npos);
@@ -341,12 +321,12 @@ TEST_CASE("render --dump stencil writes each light's picture as its pass ends an
                                        "nodes: [{mesh: ground}, {mesh: box, translate: [0, 0.5, 0]}]\n"
                                        "shadow: {method: zfail}\n");
   const fs::path dir = freshDir("stencil");
-  const Run r = run("render '" + scene + "' -o '" + (dir / "s.png").string() + "' --dump stencil --quiet");
+  const CliRun r = runShadowref("render '" + scene + "' -o '" + (dir / "s.png").string() + "' --dump stencil --quiet");
   CHECK(r.status == 0);
   CHECK(entries(dir) == std::vector<std::string>{"s.png", "s.stencil-L0.png", "s.stencil-L1.png", "s.stencil-L2.png"});
   // 3 lights x 8192 x 8192 counts = 3 * 2^26 > 2^27: refused before rendering, nothing written.
   const fs::path big = freshDir("stencil-big");
-  const Run refused = run("render '" + scene + "' -D image.width=8192 -D image.height=8192 -o '" +
+  const CliRun refused = runShadowref("render '" + scene + "' -D image.width=8192 -D image.height=8192 -o '" +
                           (big / "s.exr").string() + "' --dump stencil");
   CHECK(refused.status == 2);
   CHECK(refused.err.find("134217728") != std::string::npos);
@@ -355,20 +335,20 @@ TEST_CASE("render --dump stencil writes each light's picture as its pass ends an
 
 TEST_CASE("flag messages say what is wrong: not a number, an unknown subcommand, any-case extensions",
           "[cli][hostile]") {
-  const Run letters = run("render --threads abc");
+  const CliRun letters = runShadowref("render --threads abc");
   CHECK(letters.status == 2);
   CHECK(letters.err.find("'abc' is not a whole number (allowed: 0 to 256)") != std::string::npos);
-  const Run large = run("render --threads 257");
+  const CliRun large = runShadowref("render --threads 257");
   CHECK(large.status == 2);
   CHECK(large.err.find("257 is outside the allowed range 0 to 256") != std::string::npos);
-  const Run typo = run("rendr scenes/minimal.yaml");
+  const CliRun typo = runShadowref("rendr scenes/minimal.yaml");
   CHECK(typo.status == 2);
   CHECK(typo.err.find("unknown subcommand 'rendr' (did you mean 'render'?)") != std::string::npos);
-  const Run far = run("xyzzy");
+  const CliRun far = runShadowref("xyzzy");
   CHECK(far.status == 2);
   CHECK(far.err.find("unknown subcommand 'xyzzy'; the subcommands are") != std::string::npos);
   const fs::path dir = freshDir("case");
-  const Run mixed = run("render scenes/minimal.yaml -D image.width=16 -D image.height=12 -o '" + (dir / "a.Png").string() +
+  const CliRun mixed = runShadowref("render scenes/minimal.yaml -D image.width=16 -D image.height=12 -o '" + (dir / "a.Png").string() +
                         "' -o '" + (dir / "b.eXr").string() + "' --quiet");
   CHECK(mixed.status == 0);
   CHECK(entries(dir) == std::vector<std::string>{"a.Png", "b.eXr"});
@@ -377,7 +357,7 @@ TEST_CASE("flag messages say what is wrong: not a number, an unknown subcommand,
 TEST_CASE("a range message shows the value as written, not rounded into the range", "[cli][hostile]") {
   // %g printed 90.0000001 as "90 is outside the allowed range [0, 90]".
   const std::string scene = writeScene("cutoff.yaml", "lights: [{type: spot, position: [0, 4, 0], spot_cutoff: 90.0000001}]\n");
-  const Run r = run("check '" + scene + "'");
+  const CliRun r = runShadowref("check '" + scene + "'");
   CHECK(r.status == 2);
   CHECK(r.err.find("spot_cutoff: 90.0000001 is outside the allowed range [0, 90]") != std::string::npos);
 }
@@ -386,16 +366,16 @@ TEST_CASE("render with the reference and the fast pipeline writes the same pixel
   const fs::path dir = freshDir("pipelines");
   const std::string ref = (dir / "ref.exr").string(), fast = (dir / "fast.exr").string();
   const std::string scene = "render scenes/minimal.yaml -D image.width=48 -D image.height=36 --method zfail --quiet ";
-  const Run a = run(scene + "--pipeline reference -o '" + ref + "'");
-  const Run b = run(scene + "--pipeline fast --threads 3 -o '" + fast + "'");
+  const CliRun a = runShadowref(scene + "--pipeline reference -o '" + ref + "'");
+  const CliRun b = runShadowref(scene + "--pipeline fast --threads 3 -o '" + fast + "'");
   INFO(a.err << b.err);
   REQUIRE(a.status == 0);
   REQUIRE(b.status == 0);
   // Every channel (R, G, B, A, Z, stencil) exactly: the reference defines the bytes.
-  const Run same = run("compare '" + ref + "' '" + fast + "'");  // tolerance 0
+  const CliRun same = runShadowref("compare '" + ref + "' '" + fast + "'");  // tolerance 0
   INFO(same.out << same.err);
   CHECK(same.status == 0);
-  const Run bad = run(scene + "--pipeline softpipe -o '" + (dir / "x.exr").string() + "'");
+  const CliRun bad = runShadowref(scene + "--pipeline softpipe -o '" + (dir / "x.exr").string() + "'");
   CHECK(bad.status == 2);
   CHECK(bad.err.find("--pipeline") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "x.exr"));

@@ -16,42 +16,21 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "support/cli_run.h"
+
 namespace fs = std::filesystem;
+using shadowref::testing::CliRun;
+using shadowref::testing::runShadowref;
+using shadowref::testing::runShell;
+using shadowref::testing::slurp;
 
 namespace {
-
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
 
 fs::path scratch() {
   const fs::path dir = fs::temp_directory_path() / ("shadowref-provenance-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `command` (shell syntax) in the source folder.
-Run shell(const std::string& command) {
-  const fs::path dir = scratch();
-  const std::string cmd = std::string("cd '") + SHADOWREF_SOURCE_DIR + "' && " + command + " >'" +
-                          (dir / "out.txt").string() + "' 2>'" + (dir / "err.txt").string() + "'";
-  const int raw = std::system(cmd.c_str());
-  Run r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(dir / "out.txt");
-  r.err = slurp(dir / "err.txt");
-  return r;
-}
-
-Run shadowref(const std::string& args) { return shell(std::string("'") + SHADOWREF_CLI + "' " + args); }
 
 // "name: value" lines after the first, as a map.
 std::map<std::string, std::string> versionFields(const std::string& text) {
@@ -104,7 +83,7 @@ std::map<std::string, std::string> shadowrefAttributes(const std::string& path) 
 }  // namespace
 
 TEST_CASE("shadowref --version prints the version, revision, vector level and compiler and exits 0", "[cli][provenance]") {
-  const Run r = shadowref("--version");
+  const CliRun r = runShadowref("--version");
   INFO(r.out << r.err);
   CHECK(r.status == 0);
   CHECK(r.err.empty());
@@ -116,7 +95,7 @@ TEST_CASE("shadowref --version prints the version, revision, vector level and co
   if (revision != "unknown") {
     // A commit of this repository (the binary may be older than the newest commit).
     const std::string hash = revision.substr(0, revision.find('-'));
-    CHECK(shell("git cat-file -e '" + hash + "^{commit}'").status == 0);
+    CHECK(runShell("git cat-file -e '" + hash + "^{commit}'").status == 0);
   }
   REQUIRE(fields.count("isa"));
   REQUIRE(fields.count("compiler"));
@@ -124,19 +103,19 @@ TEST_CASE("shadowref --version prints the version, revision, vector level and co
   CHECK(fields.at("compiler") == expectedCompiler());
   CHECK(fields.count("build type") == 1);
   // --version wins over the missing subcommand, and --help lists it.
-  CHECK(shadowref("--help").out.find("--version") != std::string::npos);
+  CHECK(runShadowref("--help").out.find("--version") != std::string::npos);
 }
 
 TEST_CASE("every image a render writes names the program, scene, hash, overrides, threads", "[cli][provenance]") {
   const fs::path dir = scratch();
-  const std::string revision = versionFields(shadowref("--version").out)["revision"];
-  const Run sum = shell("sha1sum scenes/minimal.yaml");
+  const std::string revision = versionFields(runShadowref("--version").out)["revision"];
+  const CliRun sum = runShell("sha1sum scenes/minimal.yaml");
   REQUIRE(sum.status == 0);
   const std::string sceneSha1 = sum.out.substr(0, 40);
   const std::string png = (dir / "m.png").string(), exr = (dir / "m.exr").string();
   const std::string args = "render scenes/minimal.yaml -D image.width=40 -D image.height=30 "
                            "-D 'ambient=[0.2, 0.2, 0.2]' --method zpass --threads 2 --dump depth --dump stencil --quiet";
-  const Run r = shadowref(args + " -o '" + png + "' -o '" + exr + "'");
+  const CliRun r = runShadowref(args + " -o '" + png + "' -o '" + exr + "'");
   INFO(r.err);
   REQUIRE(r.status == 0);
 
@@ -167,14 +146,14 @@ TEST_CASE("every image a render writes names the program, scene, hash, overrides
 
   // The same command gives the same bytes, metadata included.
   const std::string png2 = (dir / "again.png").string(), exr2 = (dir / "again.exr").string();
-  REQUIRE(shadowref(args + " -o '" + png2 + "' -o '" + exr2 + "'").status == 0);
+  REQUIRE(runShadowref(args + " -o '" + png2 + "' -o '" + exr2 + "'").status == 0);
   CHECK(slurp(png) == slurp(png2));
   CHECK(slurp(exr) == slurp(exr2));
 }
 
 TEST_CASE("the built-in scene is named as such and has no file hash, and no -D gives no overrides", "[cli][provenance]") {
   const std::string png = (scratch() / "builtin.png").string();
-  REQUIRE(shadowref("render -D image.width=32 -D image.height=24 --threads 1 --quiet -o '" + png + "'").status == 0);
+  REQUIRE(runShadowref("render -D image.width=32 -D image.height=24 --threads 1 --quiet -o '" + png + "'").status == 0);
   const auto attributes = shadowrefAttributes(png);
   CHECK(attributes.at("shadowref:scene") == "<builtin:room>");
   CHECK(attributes.at("shadowref:method") == "zfail");
@@ -182,7 +161,7 @@ TEST_CASE("the built-in scene is named as such and has no file hash, and no -D g
   CHECK(attributes.count("shadowref:scene-sha1") == 0);
 
   const std::string exr = (scratch() / "plain.exr").string();
-  REQUIRE(shadowref("render scenes/minimal.yaml --threads 1 --quiet -o '" + exr + "'").status == 0);
+  REQUIRE(runShadowref("render scenes/minimal.yaml --threads 1 --quiet -o '" + exr + "'").status == 0);
   CHECK(shadowrefAttributes(exr).count("shadowref:overrides") == 0);
   CHECK(shadowrefAttributes(exr).at("shadowref:scene") == "scenes/minimal.yaml");
 }

@@ -80,3 +80,46 @@ TEST_CASE("the include rule finds a forbidden include", "[docs][include_graph]")
   CHECK(includes[0].first == 3);
   CHECK(includes[0].second == "exec/renderer.h");
 }
+
+namespace {
+
+// The lines of a file that contain `word`, with their numbers.
+std::vector<std::pair<int, std::string>> linesWith(const fs::path& file, const std::string& word) {
+  std::vector<std::pair<int, std::string>> out;
+  std::ifstream in(file);
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n)
+    if (line.find(word) != std::string::npos) out.emplace_back(n, line);
+  return out;
+}
+
+}  // namespace
+
+// The executor's speed machinery (thread pools, span scratch) is owned by explicit objects — the
+// pipeline maker, the renderer — never by the threads: state kept per thread would outlive the
+// renderer that filled it and tie bytes or memory to whichever thread ran a task.
+TEST_CASE("no source file keeps state per thread (thread_local)", "[docs][include_graph]") {
+  int files = 0;
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(kRoot / "src")) {
+    const std::string ext = entry.path().extension().string();
+    if (!entry.is_regular_file() || (ext != ".h" && ext != ".cpp")) continue;
+    ++files;
+    for (const auto& [line, text] : linesWith(entry.path(), "thread_local")) {
+      INFO(fs::relative(entry.path(), kRoot).string() << ":" << line << ": " << text);
+      CHECK(false);
+    }
+  }
+  CHECK(files > 50);  // it looked at the sources
+}
+
+TEST_CASE("the thread_local rule finds the word", "[docs][include_graph]") {
+  const fs::path file = fs::temp_directory_path() / "shadowref_thread_local_probe.cpp";
+  {
+    std::ofstream out(file);
+    out << "int a;\nstatic thread_local int b;\n";
+  }
+  const auto lines = linesWith(file, "thread_local");
+  fs::remove(file);
+  REQUIRE(lines.size() == 1);
+  CHECK(lines[0].first == 2);
+}

@@ -150,18 +150,11 @@ struct IndexedMesh {
   Polygon2 outline;  // window space
 };
 
-enum class Winding { CCW, CW, Mixed };
-
 // Window point -> clip vertex, scaled by a random w so the divide is exercised too.
 ClipVertex clipVertexAt(const Viewport& vp, const glm::dvec2& p, TestRandom& rng) {
   ClipVertex v = windowVertex(vp, p.x, p.y, 0.5);
   v.position *= rng.uniform(0.5, 4.0);
   return v;
-}
-
-void addTriangle(IndexedMesh& m, uint32_t a, uint32_t b, uint32_t c, Winding winding, TestRandom& rng) {
-  const bool flip = winding == Winding::CW || (winding == Winding::Mixed && rng.below(2) == 1);
-  m.indices.insert(m.indices.end(), {a, flip ? c : b, flip ? b : c});
 }
 
 // An n x n jittered grid over [-6, 70]^2 (beyond a 64x64 viewport on every side), each cell split
@@ -175,17 +168,8 @@ IndexedMesh jitteredGrid(const Viewport& vp, int n, uint64_t seed, Winding windi
     for (int i = 0; i <= n; ++i)
       points.push_back({lo + cell * i + rng.uniform(-0.3, 0.3) * cell, lo + cell * j + rng.uniform(-0.3, 0.3) * cell});
   for (const glm::dvec2& p : points) m.vertices.push_back(clipVertexAt(vp, p, rng));
-  auto at = [&](int i, int j) { return uint32_t(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      if (rng.below(2) == 0) {
-        addTriangle(m, at(i, j), at(i + 1, j), at(i + 1, j + 1), winding, rng);
-        addTriangle(m, at(i, j), at(i + 1, j + 1), at(i, j + 1), winding, rng);
-      } else {
-        addTriangle(m, at(i, j), at(i + 1, j), at(i, j + 1), winding, rng);
-        addTriangle(m, at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), winding, rng);
-      }
-    }
+  m.indices = gridTriangles(n, n, winding, rng);
+  auto at = [&](int i, int j) { return size_t(j * (n + 1) + i); };
   for (int i = 0; i <= n; ++i) m.outline.push_back(points[at(i, 0)]);
   for (int j = 1; j <= n; ++j) m.outline.push_back(points[at(n, j)]);
   for (int i = n - 1; i >= 0; --i) m.outline.push_back(points[at(i, n)]);
@@ -207,7 +191,7 @@ IndexedMesh fan(const Viewport& vp, const glm::dvec2& centre, int count, double 
     m.vertices.push_back(clipVertexAt(vp, p, rng));
   }
   for (int k = 0; k < count; ++k)
-    addTriangle(m, 0, uint32_t(1 + k), uint32_t(1 + (k + 1) % count), winding, rng);
+    addTriangle(m.indices, 0, uint32_t(1 + k), uint32_t(1 + (k + 1) % count), winding, rng);
   return m;
 }
 

@@ -613,9 +613,9 @@ TEST_CASE("a counting flush gives the bytes and counts of one thread at any thre
   CHECK(one.flushesByTriangles == 0);
   checkCountsBothWays(one, 500, 10000);
 
-  Renderer::useReferencePath(true);
+  Renderer::oneFragmentAtATime(true);
   const CountingRun reference = renderCounting(q, 1);
-  Renderer::useReferencePath(false);
+  Renderer::oneFragmentAtATime(false);
   CHECK(sameBytes(reference.fb.stencil(), one.fb.stencil()));
 
   for (int threads : {2, 3, 8}) {

@@ -1,5 +1,6 @@
-// The span loops (stencil counting, depth only, general) against the reference path, which sends
-// every fragment through the one-fragment function of the pixel history: the same triangles in
+// The span kernels (stencil counting, depth only, constant colour, general) against the renderer
+// run one fragment at a time (Renderer::oneFragmentAtATime), which sends every fragment through
+// the one-fragment function of the pixel history: the same triangles in
 // random render states must leave the same bytes in every buffer and the same counters.
 #include <algorithm>
 #include <cstring>
@@ -115,10 +116,10 @@ class PixelShader final : public FragmentShader {
 
 Drawn drawWith(bool reference, int width, int height, DepthFormat format, const std::vector<RenderState>& states,
                const std::vector<std::vector<ClipVertex>>& batches, int threads) {
-  Renderer::useReferencePath(reference);
+  Renderer::oneFragmentAtATime(reference);
   Drawn d{Framebuffer(width, height, format), {}};
   Renderer renderer(d.fb, threads);
-  Renderer::useReferencePath(false);
+  Renderer::oneFragmentAtATime(false);
   const ColorVaryingShader varying;
   const ConstantColorShader constant({0.3, 0.6, 0.9, 0.5});
   const PixelShader pixel;
@@ -180,10 +181,10 @@ namespace {
 // cut by the shadow's edges, the second all in it. Back-facing when `back` (the corners in the
 // other order).
 Drawn drawOverShadow(bool reference, const StencilFaceState& face, bool back, uint8_t lit, uint8_t shadow) {
-  Renderer::useReferencePath(reference);
+  Renderer::oneFragmentAtATime(reference);
   Drawn d{Framebuffer(256, 64), {}};
   Renderer renderer(d.fb, 1);
-  Renderer::useReferencePath(false);
+  Renderer::oneFragmentAtATime(false);
   d.fb.ensureStencil();
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 256; ++x) d.fb.stencil()[d.fb.index(x, y)] = x >= 40 && x < 180 && y >= 10 && y < 50 ? shadow : lit;

@@ -1,6 +1,7 @@
-// Whole frames through the span loops against the reference path (every fragment through the
-// one-fragment function of the pixel history): every method, both depth formats, soft lights,
-// PCF and cube maps must give the same bytes in every buffer and the same counters.
+// Whole frames through the span kernels against the renderer run one fragment at a time
+// (Renderer::oneFragmentAtATime: every fragment through the one-fragment function of the pixel
+// history): every method, both depth formats, soft lights, PCF and cube maps must give the same
+// bytes in every buffer and the same counters.
 #include <algorithm>
 
 #include <catch2/catch.hpp>
@@ -19,15 +20,15 @@ FrameResult render(const Scene& scene, bool reference, int threads) {
   FrameOptions options;
   options.threads = threads;
   options.keepStencil = true;
-  Renderer::useReferencePath(reference);
+  Renderer::oneFragmentAtATime(reference);
   FrameResult result = renderFrame(scene, options);
-  Renderer::useReferencePath(false);
+  Renderer::oneFragmentAtATime(false);
   return result;
 }
 
 }  // namespace
 
-TEST_CASE("span loops give the reference path's bytes for every method", "[spans][determinism]") {
+TEST_CASE("span kernels give the one-fragment path's bytes for every method", "[spans][determinism]") {
   const auto [file, overrides] = GENERATE(table<std::string, std::vector<std::string>>({
       {"scenes/room.yaml", {"shadow.method=zfail"}},
       {"scenes/room.yaml", {"shadow.method=zpass", "image.depth=unorm24"}},

@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "exec/fast_pipeline.h"
 #include "exec/renderer.h"
 #include "exec/thread_pool.h"
 #include "support/raster_harness.h"
@@ -107,21 +108,52 @@ TEST_CASE("a vertex index out of range is an error with threads too, and nothing
   for (uint8_t v : fb.stencil()) REQUIRE(v == 0);
 }
 
-TEST_CASE("a thread keeps one pool per thread count for its renderers, another thread has its own",
+TEST_CASE("a maker's pipelines share its pool; a renderer made with a count has a pool of its own",
           "[raster][threads]") {
-  CHECK(threadPoolForThisThread(1) == nullptr);
-  ThreadPool* two = threadPoolForThisThread(2);
-  REQUIRE(two != nullptr);
-  CHECK(two->threadCount() == 2);
-  CHECK(threadPoolForThisThread(2) == two);  // kept: no threads started per frame
-  CHECK(threadPoolForThisThread(3)->threadCount() == 3);
-  ThreadPool* other = nullptr;
-  std::thread([&] { other = threadPoolForThisThread(2); }).join();
-  CHECK(other != two);  // a pool serves one thread's runs at a time
-  Framebuffer fb(8, 8);
+  CHECK(makeThreadPool(1) == nullptr);
+  const FastPipelineMaker one(1);
+  CHECK(one.pool() == nullptr);
+  CHECK(one.threads() == 1);
+  const FastPipelineMaker maker(2);
+  ThreadPool* const pool = maker.pool();
+  REQUIRE(pool != nullptr);
+  CHECK(pool->threadCount() == 2);
+  Framebuffer fb(8, 8), map(4, 4);
+  const std::unique_ptr<Pipeline> frame = maker.make(fb);
+  auto& fast = dynamic_cast<FastPipeline&>(*frame);
+  CHECK(fast.renderer().pool().get() == pool);  // kept: no threads started per frame
+  const std::unique_ptr<Pipeline> shadowMap = frame->forFramebuffer(map);
+  CHECK(dynamic_cast<FastPipeline&>(*shadowMap).renderer().pool().get() == pool);
+  CHECK(shadowMap->threads() == 2);
   Renderer a(fb, 2), b(fb, 2);
   CHECK(a.threads() == 2);
   CHECK(b.threads() == 2);
+  CHECK(a.pool() != b.pool());
+  CHECK(a.pool() != nullptr);
+}
+
+TEST_CASE("runOnThreads names each task's thread, and a thread runs one task at a time", "[raster][threads]") {
+  for (const int threads : {1, 2, 3}) {
+    ThreadPool pool(threads);
+    constexpr int kTasks = 200;
+    std::vector<int> threadOf(kTasks, -1);
+    // One flag per thread: a task that finds its thread's flag raised would share that thread
+    // with a task still running.
+    std::vector<std::atomic<int>> busy(static_cast<size_t>(threads));
+    std::atomic<int> overlaps{0};
+    pool.runOnThreads(kTasks, [&](int task, int thread) {
+      threadOf[size_t(task)] = thread;
+      if (thread < 0 || thread >= threads) return;
+      if (busy[size_t(thread)].exchange(1) != 0) ++overlaps;
+      std::this_thread::yield();  // long enough for another thread to claim a task meanwhile
+      busy[size_t(thread)].store(0);
+    });
+    CHECK(overlaps == 0);
+    for (const int t : threadOf) {
+      REQUIRE(t >= 0);
+      REQUIRE(t < threads);
+    }
+  }
 }
 
 namespace {

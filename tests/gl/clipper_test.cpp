@@ -279,19 +279,7 @@ TEST_CASE("watertight through the near plane: a jittered floor grid reaching beh
           v.position = p * glm::dvec4(x, -1.0, z, 1.0);
           vertices.push_back(v);
         }
-      std::vector<uint32_t> indices;
-      auto at = [&](int i, int j) { return uint32_t(j * (nx + 1) + i); };
-      for (int j = 0; j < nz; ++j)
-        for (int i = 0; i < nx; ++i) {
-          const bool diagonal = rng.below(2) == 0;
-          const uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-          const bool flip = rng.below(2) == 0;  // both windings in one mesh
-          if (diagonal) {
-            indices.insert(indices.end(), {a, flip ? c : b, flip ? b : c, a, flip ? d : c, flip ? c : d});
-          } else {
-            indices.insert(indices.end(), {a, flip ? d : b, flip ? b : d, b, flip ? d : c, flip ? c : d});
-          }
-        }
+      const std::vector<uint32_t> indices = gridTriangles(nx, nz, Winding::Mixed, rng);  // both windings in one mesh
       Framebuffer fb(64, 64);
       RenderState s = coverageCountingState(fb);
       s.clipFar = projection == 0;

@@ -13,21 +13,14 @@
 
 #include "scene/resource_limits.h"
 #include "scene/scene_loader.h"
+#include "support/errors.h"
 
 using namespace shadowref;
+using shadowref::testing::yamlErrorOf;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 
 namespace {
-
-std::string errorOf(const std::string& yaml, const LoadOptions& options = {}) {
-  try {
-    loadSceneFromString(yaml, "t.yaml", options);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 LoadOptions overrides(std::vector<std::string> list) { return LoadOptions{std::move(list)}; }
 
@@ -51,40 +44,40 @@ TEST_CASE("a -D key of thousands of names is rejected at its 65th name, without 
   std::string key = "camera";
   for (int i = 0; i < 20000; ++i) key += ".a";
   // Name k (from 0) starts at 7 + 2 (k - 1) for k >= 1; the 65th is k = 64: column 7 + 126 + 1.
-  CHECK_THAT(errorOf(kBoxMesh, overrides({key + "=1"})),
+  CHECK_THAT(yamlErrorOf(kBoxMesh, overrides({key + "=1"})),
              StartsWith("<command line>:1:134: -D key: more than 64 names separated by '.'"));
   // generator.* keys are merged into the generator section before it runs: the same limit.
   std::string generatorKey = "generator";
   for (int i = 0; i < 20000; ++i) generatorKey += ".a";
-  CHECK_THAT(errorOf(kBoxMesh, overrides({"camera.near=0.5", generatorKey + "=1"})),
+  CHECK_THAT(yamlErrorOf(kBoxMesh, overrides({"camera.near=0.5", generatorKey + "=1"})),
              StartsWith("<command line>:2:137: -D key: more than 64 names"));
   // 64 names are not rejected for their number (but camera takes one name, found at the third).
   std::string sixtyFour = "camera";
   for (int i = 1; i < 64; ++i) sixtyFour += ".a";
-  CHECK_THAT(errorOf(kBoxMesh, overrides({sixtyFour + "=1"})), StartsWith("<command line>:1:10: -D camera.a.a"));
+  CHECK_THAT(yamlErrorOf(kBoxMesh, overrides({sixtyFour + "=1"})), StartsWith("<command line>:1:10: -D camera.a.a"));
 }
 
 TEST_CASE("YAML nested deeper than 64 levels is an error at the 65th level, before yaml-cpp recurses", "[loader][hostile]") {
   // Flow style, 3000 deep: yaml-cpp's own guard said "YAML syntax error: bad file" at 1:1.
   const std::string flow = "nodes: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
   // The root map is level 1; the k-th '[' is level k + 1, so level 65 is the 64th '['.
-  CHECK_THAT(errorOf(flow), StartsWith("t.yaml:1:" + std::to_string(7 + 64) +
+  CHECK_THAT(yamlErrorOf(flow), StartsWith("t.yaml:1:" + std::to_string(7 + 64) +
                                        ": lists and maps nested more than 64 levels deep"));
   // Block style, 600 deep: level d is the map whose key stands on line d, indented 2 (d - 1).
   std::string block;
   for (int d = 1; d <= 600; ++d) block += std::string(2 * (d - 1), ' ') + "a:\n";
-  CHECK_THAT(errorOf(block), StartsWith("t.yaml:65:129: lists and maps nested more than 64 levels deep"));
+  CHECK_THAT(yamlErrorOf(block), StartsWith("t.yaml:65:129: lists and maps nested more than 64 levels deep"));
   // 64 levels are parsed (and then checked as a scene: the key is unknown).
-  CHECK_THAT(errorOf("nodes: " + std::string(63, '[') + std::string(63, ']') + "\n"), !Contains("nested"));
+  CHECK_THAT(yamlErrorOf("nodes: " + std::string(63, '[') + std::string(63, ']') + "\n"), !Contains("nested"));
   // A -D value: its first '[' is level 1, at the value's first column (12).
   const std::string value = std::string(100, '[') + std::string(100, ']');
-  CHECK_THAT(errorOf(kBoxMesh, overrides({"camera.eye=" + value})),
+  CHECK_THAT(yamlErrorOf(kBoxMesh, overrides({"camera.eye=" + value})),
              StartsWith("<command line>:1:" + std::to_string(12 + 64) + ": lists and maps nested more than 64"));
 }
 
 TEST_CASE("an error in a -D value spanning lines stays on the option's line, at its column", "[loader][hostile]") {
   // "camera.near=\nabc": 'a' is character 14 of the argument.
-  CHECK_THAT(errorOf(kBoxMesh, overrides({"camera.near=\nabc"})),
+  CHECK_THAT(yamlErrorOf(kBoxMesh, overrides({"camera.near=\nabc"})),
              StartsWith("<command line>:1:14: camera.near: expected a number, got 'abc'"));
   // The second option; 'z' is character 18 of "shadow.method=\n  zfial". The loader keeps any
   // technique name and where it stands; the registry reports it there
@@ -97,31 +90,31 @@ TEST_CASE("an error in a -D value spanning lines stays on the option's line, at 
 TEST_CASE("the resource budget is checked before instancing, at the first node that does not fit", "[loader][hostile]") {
   const std::string three = kBoxMesh + "nodes:\n  - {mesh: box}\n  - {mesh: box}\n  - {mesh: box}\n";
   const std::string thirdNode = at(three, "{mesh", three.find("{mesh", three.find("{mesh") + 1) + 1);
-  CHECK(errorOf(three) == "(no error)");
-  CHECK_THAT(errorOf(three, overrides({"limits.max_instances=2"})),
+  CHECK(yamlErrorOf(three) == "(no error)");
+  CHECK_THAT(yamlErrorOf(three, overrides({"limits.max_instances=2"})),
              StartsWith(thirdNode + ": nodes.2: the scene needs more than 2 instances (the limit limits.max_instances; "
                                     "raise it with 'limits: {max_instances: N}' in the scene or -D limits.max_instances=N)"));
-  CHECK(errorOf(three, overrides({"limits.max_instances=3"})) == "(no error)");
+  CHECK(yamlErrorOf(three, overrides({"limits.max_instances=3"})) == "(no error)");
   // 3 x 12 = 36 triangles, 3 x 24 = 72 vertices.
   const std::string tris = "limits: {max_triangles: 35}\n" + three;
-  CHECK_THAT(errorOf(tris), StartsWith(at(tris, "{mesh", tris.find("{mesh", tris.find("{mesh") + 1) + 1) +
+  CHECK_THAT(yamlErrorOf(tris), StartsWith(at(tris, "{mesh", tris.find("{mesh", tris.find("{mesh") + 1) + 1) +
                                        ": nodes.2: the scene needs more than 35 triangles after instancing"));
-  CHECK(errorOf("limits: {max_triangles: 36}\n" + three) == "(no error)");
-  CHECK_THAT(errorOf(three, overrides({"limits.max_vertices=71"})),
+  CHECK(yamlErrorOf("limits: {max_triangles: 36}\n" + three) == "(no error)");
+  CHECK_THAT(yamlErrorOf(three, overrides({"limits.max_vertices=71"})),
              StartsWith(thirdNode + ": nodes.2: the scene needs more than 71 vertices after instancing"));
-  CHECK(errorOf(three, overrides({"limits.max_vertices=72"})) == "(no error)");
+  CHECK(yamlErrorOf(three, overrides({"limits.max_vertices=72"})) == "(no error)");
   // Children count as instances, each at its own node; a shadow proxy adds its triangles.
   const std::string nested = kBoxMesh + "nodes:\n  - {name: g, children: [{mesh: box}, {mesh: box}]}\n";
-  CHECK_THAT(errorOf(nested, overrides({"limits.max_instances=1"})),
+  CHECK_THAT(yamlErrorOf(nested, overrides({"limits.max_instances=1"})),
              StartsWith(at(nested, "{mesh", nested.find("{mesh") + 1) + ": nodes.0.children.1: the scene needs more"));
   const std::string proxy = kBoxMesh + "nodes:\n  - {mesh: box, shadow_proxy: box}\n";
-  CHECK_THAT(errorOf(proxy, overrides({"limits.max_triangles=23"})), Contains("more than 23 triangles"));
-  CHECK(errorOf(proxy, overrides({"limits.max_triangles=24"})) == "(no error)");
+  CHECK_THAT(yamlErrorOf(proxy, overrides({"limits.max_triangles=23"})), Contains("more than 23 triangles"));
+  CHECK(yamlErrorOf(proxy, overrides({"limits.max_triangles=24"})) == "(no error)");
   // Limits are whole numbers from 1 to 2^40.
-  CHECK_THAT(errorOf(three, overrides({"limits.max_instances=0"})),
+  CHECK_THAT(yamlErrorOf(three, overrides({"limits.max_instances=0"})),
              StartsWith("<command line>:1:22: limits.max_instances: expected a whole number from 1 to 2^40"));
-  CHECK_THAT(errorOf("limits: {max_triangles: 2.5}\n"), StartsWith("t.yaml:1:25: limits.max_triangles: expected a whole number"));
-  CHECK_THAT(errorOf("limits: {max_trinagles: 5}\n"), Contains("did you mean 'max_triangles'?"));
+  CHECK_THAT(yamlErrorOf("limits: {max_triangles: 2.5}\n"), StartsWith("t.yaml:1:25: limits.max_triangles: expected a whole number"));
+  CHECK_THAT(yamlErrorOf("limits: {max_trinagles: 5}\n"), Contains("did you mean 'max_triangles'?"));
 }
 
 TEST_CASE("YAML aliases that repeat a mesh 111 111 times are rejected by the budget", "[loader][hostile]") {
@@ -171,7 +164,7 @@ TEST_CASE("a direction or axis with tiny components is normalised exactly, a hug
   CHECK(s.lights[0].direction == glm::dvec3(-0.4, -1.0, -0.3));
 
   const std::string huge = "lights:\n  - {type: directional, direction: [-1e308, 0, 0]}\n";
-  CHECK_THAT(errorOf(huge), StartsWith(at(huge, "-1e308") + ": lights.0.direction.0: '-1e308' is too large; "
+  CHECK_THAT(yamlErrorOf(huge), StartsWith(at(huge, "-1e308") + ": lights.0.direction.0: '-1e308' is too large; "
                                                             "a scene's numbers lie within +-1e15"));
   // A rotation about [1e-320, 0, 0] by 90 degrees turns y into z (the node vanished before).
   s = loadSceneFromString(kBoxMesh + "nodes:\n  - {mesh: box, rotate: {axis: [1e-320, 0, 0], angle: 90}}\n", "t.yaml");
@@ -181,51 +174,51 @@ TEST_CASE("a direction or axis with tiny components is normalised exactly, a hug
   CHECK(y.z == Approx(1.0).epsilon(1e-15));
   CHECK(s.instances().size() == 1);
   const std::string zeroAxis = kBoxMesh + "nodes:\n  - {mesh: box, rotate: {axis: [0, 0, 0], angle: 90}}\n";
-  CHECK_THAT(errorOf(zeroAxis), StartsWith(at(zeroAxis, "[0, 0, 0]") + ": nodes.0.rotate.axis: the rotation axis must not be the zero vector"));
+  CHECK_THAT(yamlErrorOf(zeroAxis), StartsWith(at(zeroAxis, "[0, 0, 0]") + ": nodes.0.rotate.axis: the rotation axis must not be the zero vector"));
   // The camera's up vector too.
-  CHECK(errorOf(kBoxMesh + "camera: {up: [0, 1e-320, 0]}\n") == "(no error)");
+  CHECK(yamlErrorOf(kBoxMesh + "camera: {up: [0, 1e-320, 0]}\n") == "(no error)");
 }
 
 TEST_CASE("numbers beyond 1e15 are rejected where written: light positions, spacings, the camera", "[loader][hostile]") {
   const std::string position = "lights:\n  - {position: [1.7e308, 0, 0]}\n";
-  CHECK_THAT(errorOf(position), StartsWith(at(position, "1.7e308") + ": lights.0.position.0: '1.7e308' is too large"));
+  CHECK_THAT(yamlErrorOf(position), StartsWith(at(position, "1.7e308") + ": lights.0.position.0: '1.7e308' is too large"));
   const std::string spacing = "lights:\n  - {soft: {shape: sphere14, spacing: 1e300}}\n";
-  CHECK_THAT(errorOf(spacing), StartsWith(at(spacing, "1e300") + ": lights.0.soft.spacing: '1e300' is too large"));
+  CHECK_THAT(yamlErrorOf(spacing), StartsWith(at(spacing, "1e300") + ": lights.0.soft.spacing: '1e300' is too large"));
   const std::string eye = "camera: {eye: [1e308, 0, 0]}\n";
-  CHECK_THAT(errorOf(eye), StartsWith(at(eye, "1e308") + ": camera.eye.0: '1e308' is too large"));
-  CHECK_THAT(errorOf(kBoxMesh, overrides({"lights.0.position=[0, 2e15, 0]"})), !Contains("too large"));  // no light 0
-  CHECK_THAT(errorOf("lights: [{}]\n", overrides({"lights.0.position=[0, 2e15, 0]"})),
+  CHECK_THAT(yamlErrorOf(eye), StartsWith(at(eye, "1e308") + ": camera.eye.0: '1e308' is too large"));
+  CHECK_THAT(yamlErrorOf(kBoxMesh, overrides({"lights.0.position=[0, 2e15, 0]"})), !Contains("too large"));  // no light 0
+  CHECK_THAT(yamlErrorOf("lights: [{}]\n", overrides({"lights.0.position=[0, 2e15, 0]"})),
              StartsWith("<command line>:1:23: lights.0.position.1: '2e15' is too large"));
   // The bound itself is allowed.
-  CHECK(errorOf("lights:\n  - {position: [1e15, -1e15, 0]}\n") == "(no error)");
+  CHECK(yamlErrorOf("lights:\n  - {position: [1e15, -1e15, 0]}\n") == "(no error)");
 }
 
 TEST_CASE("eye and target too close together are reported as such, not as a parallel up vector", "[loader][hostile]") {
   const std::string tiny = "camera: {eye: [0, 0, 0], target: [1e-300, 0, 0]}\n";
-  CHECK_THAT(errorOf(tiny), StartsWith(at(tiny, "[1e-300") + ": camera: eye and target are too close together (1e-300 apart)"));
+  CHECK_THAT(yamlErrorOf(tiny), StartsWith(at(tiny, "[1e-300") + ": camera: eye and target are too close together (1e-300 apart)"));
   // 1e-6 apart at 1e14 from the origin: below the coordinates' rounding (1e14 * 1e-9).
   const std::string far = "camera: {eye: [1e14, 0, 0], target: [1e14, 1e-6, 0]}\n";
-  CHECK_THAT(errorOf(far), StartsWith(at(far, "[1e14, 1e-6") + ": camera: eye and target are too close together (1e-06 apart)"));
+  CHECK_THAT(yamlErrorOf(far), StartsWith(at(far, "[1e14, 1e-6") + ": camera: eye and target are too close together (1e-06 apart)"));
   // A parallel up vector is still that.
   const std::string parallel = "camera: {eye: [0, 5, 0], target: [0, 0, 0]}\n";
-  CHECK_THAT(errorOf(parallel), StartsWith("t.yaml:1:1: camera.up: the up vector is parallel to the view direction"));
+  CHECK_THAT(yamlErrorOf(parallel), StartsWith("t.yaml:1:1: camera.up: the up vector is parallel to the view direction"));
   // A field of view so small that the projection is infinite.
   const std::string fov = "camera: {fov: 1e-320}\n";
-  CHECK_THAT(errorOf(fov), StartsWith(at(fov, "1e-320") + ": camera: the projection matrix is not finite"));
+  CHECK_THAT(yamlErrorOf(fov), StartsWith(at(fov, "1e-320") + ": camera: the projection matrix is not finite"));
 }
 
 TEST_CASE("node world transforms that overflow or underflow are errors at the node", "[loader][hostile]") {
   // 1e12 at each of three levels: 1e36 at the third, beyond 1e30.
   const std::string up = kBoxMesh +
                          "nodes:\n  - {name: a, scale: 1e12, children: [{name: b, scale: 1e12, children: [{mesh: box, scale: 1e12}]}]}\n";
-  CHECK_THAT(errorOf(up), StartsWith(at(up, "{mesh") + ": nodes.0.children.0.children.0: the world transform has entries beyond +-1e30"));
+  CHECK_THAT(yamlErrorOf(up), StartsWith(at(up, "{mesh") + ": nodes.0.children.0.children.0: the world transform has entries beyond +-1e30"));
   // 1e-100 twice: the determinant 1e-600 underflows to 0.
   const std::string down = kBoxMesh + "nodes:\n  - {name: a, scale: 1e-100, children: [{mesh: box, scale: 1e-100}]}\n";
-  CHECK_THAT(errorOf(down), StartsWith(at(down, "{mesh") + ": nodes.0.children.0: the world transform is singular"));
-  CHECK(errorOf(kBoxMesh + "nodes:\n  - {name: a, scale: 1e-100, children: [{mesh: box}]}\n") == "(no error)");
+  CHECK_THAT(yamlErrorOf(down), StartsWith(at(down, "{mesh") + ": nodes.0.children.0: the world transform is singular"));
+  CHECK(yamlErrorOf(kBoxMesh + "nodes:\n  - {name: a, scale: 1e-100, children: [{mesh: box}]}\n") == "(no error)");
   // A tiny constant attenuation whose inverse is infinite.
   const std::string attenuation = "lights:\n  - {attenuation: [1e-320, 0, 0]}\n";
-  CHECK_THAT(errorOf(attenuation), StartsWith(at(attenuation, "[1e-320") + ": lights.0.attenuation: the constant term"));
+  CHECK_THAT(yamlErrorOf(attenuation), StartsWith(at(attenuation, "[1e-320") + ": lights.0.attenuation: the constant term"));
 }
 
 TEST_CASE("many materials and nodes are looked up by name correctly", "[loader][hostile]") {
@@ -242,7 +235,7 @@ TEST_CASE("many materials and nodes are looked up by name correctly", "[loader][
   for (int i = 0; i < n; ++i) allRight = allRight && s.materials[size_t(s.roots[size_t(i)].material)].name == "m" + std::to_string(i);
   CHECK(allRight);
   // An unknown name still gets its suggestion.
-  CHECK_THAT(errorOf(kBoxMesh + "materials: {wall: {}}\nnodes:\n  - {mesh: box, material: wal}\n"),
+  CHECK_THAT(yamlErrorOf(kBoxMesh + "materials: {wall: {}}\nnodes:\n  - {mesh: box, material: wal}\n"),
              Contains("did you mean 'wall'?"));
   // Lights named twice in the file: the second entry changes the first light.
   const Scene l = loadSceneFromString("lights:\n  - {name: a, range: 2}\n  - {name: a, range: 3}\n", "t.yaml");
@@ -256,7 +249,7 @@ TEST_CASE("a long string repeated by aliases is rejected before it is copied", "
   std::string yaml = "materials:\n  m: {name: &t " + text + "}\nnodes: [";
   for (int i = 0; i < 100; ++i) yaml += std::string(i ? ", " : "") + "*t";
   yaml += "]\n";
-  const std::string e = errorOf(yaml);
+  const std::string e = yamlErrorOf(yaml);
   // At the copied value, which yaml-cpp locates at its anchor: line 2, the '&' at column 13.
   CHECK_THAT(e, StartsWith("t.yaml:2:13: "));
   CHECK_THAT(e, Contains("the document's text is more than 67108864 bytes after aliases are expanded"));
@@ -270,10 +263,10 @@ TEST_CASE("an unknown name among many long names gets its error without an edit-
   const std::string stem(199, 'n');
   for (int i = 0; i < 2000; ++i) yaml += "  " + stem + std::to_string(i % 10) + std::to_string(i) + ": {}\n";
   yaml += "nodes:\n  - {mesh: box, material: " + stem + "00x}\n";
-  const std::string e = errorOf(yaml);
+  const std::string e = yamlErrorOf(yaml);
   CHECK_THAT(e, Contains("no material named"));
   CHECK_THAT(e, Contains("did you mean '" + stem + "00'?"));
   // A word longer than 256 characters gets no suggestion at all.
-  CHECK_THAT(errorOf(kBoxMesh + "nodes:\n  - {mesh: box, material: " + std::string(300, 'q') + "}\n"),
+  CHECK_THAT(yamlErrorOf(kBoxMesh + "nodes:\n  - {mesh: box, material: " + std::string(300, 'q') + "}\n"),
              !Contains("did you mean"));
 }

@@ -4,26 +4,16 @@
 
 #include "scene/mesh_import.h"
 #include "scene/scene_error.h"
+#include "support/errors.h"
 #include "mesh_checks.h"
 
 using namespace shadowref;
+using shadowref::testing::sceneErrorOf;
 
 namespace {
 
 std::string meshFile(const std::string& name) {
   return std::string(SHADOWREF_SOURCE_DIR) + "/tests/data/meshes/" + name;
-}
-
-// The SceneError a call throws; fails the test if it throws nothing.
-template <class F>
-SceneError errorOf(F&& f) {
-  try {
-    f();
-  } catch (const SceneError& e) {
-    return e;
-  }
-  FAIL("no SceneError thrown");
-  throw;  // unreachable
 }
 
 }  // namespace
@@ -51,7 +41,7 @@ TEST_CASE("OBJ without normals gets computed ones and relative indices resolve",
 
 TEST_CASE("OBJ index out of range is reported at its line and column", "[mesh]") {
   const std::string path = meshFile("bad_index.obj");
-  const SceneError e = errorOf([&] { loadObj(path); });
+  const SceneError e = sceneErrorOf([&] { loadObj(path); });
   CHECK(e.where().file == path);
   CHECK(e.where().line == 8);
   CHECK(e.where().column == 7);
@@ -60,31 +50,31 @@ TEST_CASE("OBJ index out of range is reported at its line and column", "[mesh]")
 }
 
 TEST_CASE("OBJ relative index before the first vertex is reported at its line", "[mesh]") {
-  const SceneError e = errorOf([&] { loadObj(meshFile("negative_index.obj")); });
+  const SceneError e = sceneErrorOf([&] { loadObj(meshFile("negative_index.obj")); });
   CHECK(e.where().line == 5);
   CHECK(e.where().column == 9);
 }
 
 TEST_CASE("OBJ NaN coordinate is reported at its line and column", "[mesh]") {
-  const SceneError e = errorOf([&] { loadObj(meshFile("nan_vertex.obj")); });
+  const SceneError e = sceneErrorOf([&] { loadObj(meshFile("nan_vertex.obj")); });
   CHECK(e.where().line == 3);
   CHECK(e.where().column == 5);
   CHECK(e.message().find("NaN") != std::string::npos);
 }
 
 TEST_CASE("OBJ without faces is rejected as having no triangles", "[mesh]") {
-  const SceneError e = errorOf([&] { loadObj(meshFile("empty.obj")); });
+  const SceneError e = sceneErrorOf([&] { loadObj(meshFile("empty.obj")); });
   CHECK(e.message().find("no triangles") != std::string::npos);
 }
 
 TEST_CASE("missing mesh files give a SceneError naming the file", "[mesh]") {
   const std::string obj = meshFile("does_not_exist.obj");
-  const SceneError e = errorOf([&] { loadObj(obj); });
+  const SceneError e = sceneErrorOf([&] { loadObj(obj); });
   CHECK(e.where().file == obj);
   CHECK(e.message() == "mesh file not found");
   const std::string gltf = meshFile("does_not_exist.gltf");
-  CHECK(errorOf([&] { loadGltf(gltf); }).where().file == gltf);
-  CHECK(errorOf([&] { loadObj(meshFile("")); }).message() == "mesh file is not a regular file");
+  CHECK(sceneErrorOf([&] { loadGltf(gltf); }).where().file == gltf);
+  CHECK(sceneErrorOf([&] { loadObj(meshFile("")); }).message() == "mesh file is not a regular file");
 }
 
 TEST_CASE("a tiny glTF with an embedded buffer loads with its node transforms", "[mesh]") {
@@ -98,12 +88,12 @@ TEST_CASE("a tiny glTF with an embedded buffer loads with its node transforms", 
 }
 
 TEST_CASE("glTF accessor reaching outside its buffer is rejected", "[mesh]") {
-  const SceneError e = errorOf([&] { loadGltf(meshFile("tetra_bad_accessor.gltf")); });
+  const SceneError e = sceneErrorOf([&] { loadGltf(meshFile("tetra_bad_accessor.gltf")); });
   CHECK(e.where().file == meshFile("tetra_bad_accessor.gltf"));
 }
 
 TEST_CASE("glTF JSON syntax error keeps the parser's line and column", "[mesh]") {
-  const SceneError e = errorOf([&] { loadGltf(meshFile("broken.gltf")); });
+  const SceneError e = sceneErrorOf([&] { loadGltf(meshFile("broken.gltf")); });
   CHECK(e.where().line == 3);
   CHECK(e.where().column > 0);
 }

@@ -15,9 +15,11 @@
 #include "scene/mesh_import.h"
 #include "scene/scene_loader.h"
 #include "scene/scene_error.h"
+#include "support/errors.h"
 #include "mesh_checks.h"
 
 using namespace shadowref;
+using shadowref::testing::sceneErrorOf;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using shadowref::test::TempDir;
@@ -27,19 +29,8 @@ namespace {
 const std::string kHostile = std::string(SHADOWREF_SOURCE_DIR) + "/tests/data/hostile/";
 const std::string kMeshes = std::string(SHADOWREF_SOURCE_DIR) + "/tests/data/meshes/";
 
-template <class F>
-SceneError errorOf(F&& f) {
-  try {
-    f();
-  } catch (const SceneError& e) {
-    return e;
-  }
-  FAIL("no SceneError thrown");
-  throw;  // unreachable
-}
-
-SceneError gltfError(const std::string& path) { return errorOf([&] { loadGltf(path); }); }
-SceneError objError(const std::string& path) { return errorOf([&] { loadObj(path); }); }
+SceneError gltfError(const std::string& path) { return sceneErrorOf([&] { loadGltf(path); }); }
+SceneError objError(const std::string& path) { return sceneErrorOf([&] { loadObj(path); }); }
 
 void write(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
@@ -327,7 +318,7 @@ TEST_CASE("every scene of tests/data/hostile is rejected with a located SceneErr
     if (std::filesystem::exists(args.replace_extension(".args"))) continue;
     ++scenes;
     INFO(entry.path().string());
-    const SceneError e = errorOf([&] { loadScene(entry.path().string()); });
+    const SceneError e = sceneErrorOf([&] { loadScene(entry.path().string()); });
     // Inside the mesh file (line and column, or a .glb's byte offset), or at the scene's mesh key.
     CHECK((e.where().file != entry.path().string() || e.where().line > 0));
   }

@@ -11,22 +11,15 @@
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/technique_registry.h"
+#include "support/errors.h"
 
 using namespace shadowref;
+using shadowref::testing::messageOf;
 using Catch::Matchers::Contains;
 
 namespace {
 
 const std::string kEveryName = "none, zpass, zfail, auto, shadowmap, tsm";
-
-std::string errorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // A box on a ground plane under one point light, small enough to render every technique quickly.
 Scene smallScene(const std::string& method) {
@@ -89,15 +82,15 @@ TEST_CASE("an unknown technique is reported where the file or the -D wrote it, w
   const Scene file = loadSceneFromString("shadow:\n  method: zfial\n", "t.yaml");
   const std::string expected =
       "t.yaml:2:11: shadow.method: 'zfial' is not one of " + kEveryName + "; did you mean 'zfail'?";
-  CHECK(errorOf([&] { techniqueOf(file.shadow); }) == expected);
+  CHECK(messageOf([&] { techniqueOf(file.shadow); }) == expected);
   // Rendering reports the same: no path renders a name the registry does not know.
-  CHECK(errorOf([&] { renderFrame(file); }) == expected);
+  CHECK(messageOf([&] { renderFrame(file); }) == expected);
 
   // 'z' is character 18 of the second -D, "shadow.method=\n  zfial".
   LoadOptions o;
   o.overrides = {"camera.near=0.5", "shadow.method=\n  zfial"};
   const Scene overridden = loadSceneFromString("meshes:\n  box: {box: {}}\n", "t.yaml", o);
-  CHECK(errorOf([&] { techniqueOf(overridden.shadow); }) ==
+  CHECK(messageOf([&] { techniqueOf(overridden.shadow); }) ==
         "<command line>:2:18: shadow.method: 'zfial' is not one of " + kEveryName + "; did you mean 'zfail'?");
 
   // No suggestion when no name is close.
@@ -106,13 +99,13 @@ TEST_CASE("an unknown technique is reported where the file or the -D wrote it, w
   // FrameOptions::method (--method) has no place in a file.
   FrameOptions options;
   options.method = "shadowmapp";
-  CHECK(errorOf([&] { renderFrame(smallScene("none"), options); }) ==
+  CHECK(messageOf([&] { renderFrame(smallScene("none"), options); }) ==
         "shadow method 'shadowmapp' is not one of " + kEveryName + "; did you mean 'shadowmap'?");
 }
 
 TEST_CASE("the keys a technique reads are keys of the scene's shadow section", "[shadow][registry]") {
   // The loader names its shadow keys in the message for an unknown one.
-  const std::string message = errorOf([] { loadSceneFromString("shadow: {no_such_key: 1}\n", "t.yaml"); });
+  const std::string message = messageOf([] { loadSceneFromString("shadow: {no_such_key: 1}\n", "t.yaml"); });
   REQUIRE_THAT(message, Contains("(allowed: method, "));
   for (const ShadowTechnique* t : techniques())
     for (const TechniqueSetting& s : t->settings) {
@@ -120,6 +113,22 @@ TEST_CASE("the keys a technique reads are keys of the scene's shadow section", "
       CHECK_THAT(message, Contains(" " + std::string(s.key) + ",") || Contains(" " + std::string(s.key) + ")"));
       CHECK(!s.range.empty());
     }
+}
+
+TEST_CASE("TSM reads the shadow map's settings, in their order, and the focus region", "[shadow][registry]") {
+  auto keys = [](const char* name) {
+    const ShadowTechnique* t = findTechnique(name);
+    REQUIRE(t != nullptr);
+    std::vector<std::string> out;
+    for (const TechniqueSetting& s : t->settings) out.emplace_back(s.key);
+    return out;
+  };
+  const std::vector<std::string> map = keys("shadowmap");
+  CHECK(map == std::vector<std::string>{"map_size", "offset_factor", "offset_units", "bias", "back_faces_only", "pcf",
+                                        "compare_fail"});
+  std::vector<std::string> tsm = map;
+  tsm.push_back("focus_region");
+  CHECK(keys("tsm") == tsm);
 }
 
 TEST_CASE("`info` describes the settings the scene's technique reads", "[shadow][registry]") {
@@ -191,5 +200,5 @@ TEST_CASE("a technique defined outside the registry's file is found and rendered
   }
 
   // Without the test's list, the name is unknown, and the message lists the built-in names.
-  CHECK_THAT(errorOf([] { renderFrame(smallScene("flat")); }), Contains("'flat' is not one of " + kEveryName));
+  CHECK_THAT(messageOf([] { renderFrame(smallScene("flat")); }), Contains("'flat' is not one of " + kEveryName));
 }

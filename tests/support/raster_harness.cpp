@@ -80,4 +80,26 @@ std::string rows(std::initializer_list<const char*> lines) {
   return out;
 }
 
+void addTriangle(std::vector<uint32_t>& indices, uint32_t a, uint32_t b, uint32_t c, Winding winding, TestRandom& rng) {
+  const bool flip = winding == Winding::CW || (winding == Winding::Mixed && rng.below(2) == 1);
+  indices.insert(indices.end(), {a, flip ? c : b, flip ? b : c});
+}
+
+std::vector<uint32_t> gridTriangles(int nx, int ny, Winding winding, TestRandom& rng) {
+  std::vector<uint32_t> indices;
+  auto at = [nx](int i, int j) { return uint32_t(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      if (rng.below(2) == 0) {  // the diagonal a-c
+        addTriangle(indices, a, b, c, winding, rng);
+        addTriangle(indices, a, c, d, winding, rng);
+      } else {  // the diagonal b-d
+        addTriangle(indices, a, b, d, winding, rng);
+        addTriangle(indices, b, c, d, winding, rng);
+      }
+    }
+  return indices;
+}
+
 }  // namespace shadowref::testing

@@ -45,6 +45,19 @@ void draw(Renderer& renderer, const RenderState& state, const std::vector<ClipVe
 void draw(Pipeline& pipeline, const RenderState& state, const std::vector<ClipVertex>& vertices,
           const FragmentShader* shader = nullptr, uint32_t tag = 0);
 
+// How a mesh's triangles wind: all counter-clockwise, all clockwise, or each either way at random.
+enum class Winding { CCW, CW, Mixed };
+class TestRandom;
+
+// The triangle (a, b, c), given counter-clockwise, appended to `indices` wound as `winding` says
+// (Mixed: a coin of `rng` per triangle).
+void addTriangle(std::vector<uint32_t>& indices, uint32_t a, uint32_t b, uint32_t c, Winding winding, TestRandom& rng);
+
+// The triangles of an (nx + 1) x (ny + 1) grid of points, point (i, j) at index j * (nx + 1) + i
+// with i growing to the right and j upwards: two per cell, split along a diagonal chosen by `rng`,
+// wound as `winding` says. Every cell is covered by its two triangles exactly once.
+std::vector<uint32_t> gridTriangles(int nx, int ny, Winding winding, TestRandom& rng);
+
 // A state that counts coverage: stencil test on, func ALWAYS, every op INCR on both faces (the
 // counting pass of the watertightness tests), no culling, no colour.
 RenderState coverageCountingState(const Framebuffer& fb);
