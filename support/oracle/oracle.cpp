@@ -166,6 +166,7 @@ OracleImage castOracle(const Scene& scene, const Light& light, const OracleOptio
   img.hitMask.assign(n, 0);
   img.nearEdge.assign(n, 0);
   img.hitInstance.assign(n, -1);
+  img.hitTriangle.assign(n, 0);
   img.hitPoint.assign(n, glm::dvec3(0.0));
   std::vector<uint8_t> ambiguous(n, 0);
 
@@ -185,6 +186,7 @@ OracleImage castOracle(const Scene& scene, const Light& light, const OracleOptio
         const glm::dvec3 p = ray.origin + hit.t * ray.direction;
         img.hitMask[i] = 1;
         img.hitInstance[i] = hit.instance;
+        img.hitTriangle[i] = hit.triangle;
         img.hitPoint[i] = p;
         img.lit[i] = lightVisible(geometry, light, p);
       }

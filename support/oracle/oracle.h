@@ -57,6 +57,7 @@ struct OracleImage {
   std::vector<int> zpass, zfail;
   std::vector<uint8_t> lit, hitMask, nearEdge;
   std::vector<int> hitInstance;          // index into Scene::instances(), -1 without a hit
+  std::vector<uint32_t> hitTriangle;     // index into that instance's mesh triangles; 0 without a hit
   std::vector<glm::dvec3> hitPoint;      // world space; 0 without a hit
 
   size_t index(int x, int y) const { return static_cast<size_t>(y) * width + x; }
