@@ -270,6 +270,8 @@ int runRender(const RenderArgs& args) {
       passFiles.push_back(path);
     };
     const FrameResult frame = renderFrame(*scene, options);
+    if (!args.quiet)
+      for (const std::string& warning : frame.warnings) std::cerr << "warning: " << warning << '\n';
     const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
     for (const std::string& out : outputs) {
       writeOutput(frame, out, extras, showing("frame"));

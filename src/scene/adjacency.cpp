@@ -88,12 +88,14 @@ void dropDegenerate(Mesh& mesh, std::vector<std::string>* warnings) {
 void buildEdges(Mesh& mesh) {
   std::unordered_map<uint64_t, uint32_t> edgeOf;
   edgeOf.reserve(mesh.weldedTriangles.size() * 2);
+  mesh.triangleEdges.resize(mesh.weldedTriangles.size());
   for (uint32_t t = 0; t < mesh.weldedTriangles.size(); ++t) {
     const glm::uvec3 tri = mesh.weldedTriangles[t];
     for (int i = 0; i < 3; ++i) {
       const uint32_t a = tri[i], b = tri[(i + 1) % 3];
       const uint64_t key = (uint64_t{std::min(a, b)} << 32) | std::max(a, b);
       auto [it, inserted] = edgeOf.try_emplace(key, static_cast<uint32_t>(mesh.edges.size()));
+      mesh.triangleEdges[t][i] = it->second;
       if (inserted) {
         mesh.edges.push_back(Edge{a, b, t, kNoTriangle, 1});
         continue;
@@ -117,6 +119,21 @@ void classify(Mesh& mesh) {
                                         : Topology::Closed;
 }
 
+// The enclosed volume and whether a closed, consistently wound mesh is inside out. The sign is
+// trusted only when the sum is clearly away from 0 relative to the sum of the magnitudes of its
+// terms: a closed surface enclosing nothing (a quad and its reverse, back to back) sums to a few
+// rounding errors of either sign and is not inside out.
+void classifyWinding(Mesh& mesh) {
+  double sixTimes = 0.0, magnitude = 0.0;
+  for (const glm::uvec3& w : mesh.weldedTriangles) {
+    const double term = glm::dot(mesh.weldedPositions[w.x], glm::cross(mesh.weldedPositions[w.y], mesh.weldedPositions[w.z]));
+    sixTimes += term;
+    magnitude += std::abs(term);
+  }
+  mesh.enclosedVolume = sixTimes / 6.0;
+  mesh.insideOut = mesh.topology == Topology::Closed && mesh.inconsistentEdges == 0 && sixTimes < -1e-9 * magnitude;
+}
+
 }  // namespace
 
 void buildAdjacency(Mesh& mesh, std::vector<std::string>* warnings) {
@@ -124,6 +141,7 @@ void buildAdjacency(Mesh& mesh, std::vector<std::string>* warnings) {
   mesh.weldedTriangles.clear();
   mesh.weldIndex.clear();
   mesh.edges.clear();
+  mesh.triangleEdges.clear();
   mesh.faceNormals.clear();
   mesh.openEdges = mesh.nonManifoldEdges = mesh.inconsistentEdges = 0;
   mesh.bounds = Aabb{};
@@ -132,6 +150,7 @@ void buildAdjacency(Mesh& mesh, std::vector<std::string>* warnings) {
   dropDegenerate(mesh, warnings);
   buildEdges(mesh);
   classify(mesh);
+  classifyWinding(mesh);
 
   const auto& P = mesh.weldedPositions;
   mesh.faceNormals.reserve(mesh.weldedTriangles.size());

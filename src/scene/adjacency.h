@@ -15,7 +15,10 @@ namespace shadowref {
 //    appends one warning per dropped triangle to `warnings` when given;
 //  - builds the edge list in O(n) with a hash map keyed by the unordered welded vertex pair,
 //    edges in order of first appearance, v0 -> v1 as the edge runs in t0 ([Kuhn 2016, §4.3.5]);
-//  - counts open (1 triangle) and non-manifold (>= 3) edges and sets the topology;
+//  - records each triangle's three edges (triangleEdges);
+//  - counts open (1 triangle), non-manifold (>= 3) and inconsistently wound edges and sets the
+//    topology;
+//  - the signed enclosed volume, and whether a closed, consistently wound mesh is inside out;
 //  - face normals from the welded positions, object-space bounds.
 // weldedPositions holds every distinct render position, also those used only by dropped triangles.
 void buildAdjacency(Mesh& mesh, std::vector<std::string>* warnings = nullptr);

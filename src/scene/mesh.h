@@ -53,12 +53,21 @@ struct Mesh {
   std::vector<glm::uvec3> weldedTriangles;  // weldedTriangles[i] is triangles[i], welded
   std::vector<uint32_t> weldIndex;          // render vertex -> welded vertex
   std::vector<Edge> edges;
+  // triangleEdges[t][i]: the index in `edges` of triangle t's edge from corner i to corner i + 1.
+  // Every triangle on a non-manifold edge points at the one Edge that stands for it.
+  std::vector<glm::uvec3> triangleEdges;
   std::vector<glm::dvec3> faceNormals;      // unit, one per triangle, from the welded positions
   Topology topology = Topology::Closed;
   size_t openEdges = 0, nonManifoldEdges = 0;
   // Manifold edges whose two triangles run them the same way: a neighbour wound the other way
   // round, so inside and outside disagree (counted by buildAdjacency; 0 for a proper mesh).
   size_t inconsistentEdges = 0;
+  // The signed volume the welded triangles enclose (adjacency.h, signedVolume): positive when a
+  // closed mesh is wound counter-clockwise seen from outside. Meaningful for closed meshes only.
+  double enclosedVolume = 0.0;
+  // Closed, consistently wound, and enclosing a clearly negative volume: every triangle is wound
+  // clockwise seen from outside, so its face normals point inwards.
+  bool insideOut = false;
 
   Aabb bounds;  // object space
 };

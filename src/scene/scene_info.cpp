@@ -48,6 +48,17 @@ const char* topologyName(Topology t) {
   return "?";
 }
 
+// How the mesh is wound: inconsistently (neighbours disagree on inside and outside), or for a
+// consistently wound closed mesh the signed volume it encloses, negative when it is inside out.
+std::string winding(const Mesh& m) {
+  if (m.inconsistentEdges > 0)
+    return ", inconsistently wound (" + std::to_string(m.inconsistentEdges) +
+           " edges whose two triangles run them the same way)";
+  if (m.topology != Topology::Closed) return "";
+  return ", encloses volume " + num(m.enclosedVolume) +
+         (m.insideOut ? " (negative: inside out, every triangle wound clockwise seen from outside)" : "");
+}
+
 std::string meshName(const Scene& scene, int index) {
   return index >= 0 && index < static_cast<int>(scene.meshes.size()) ? scene.meshes[index]->name : "?";
 }
@@ -109,7 +120,8 @@ std::string describeScene(const Scene& scene, std::string_view shadowDetails) {
     triangles += m->triangles.size();
     out << "  " << m->name << ": " << m->triangles.size() << " triangles, " << m->weldedPositions.size()
         << " welded vertices, " << m->edges.size() << " edges, " << topologyName(m->topology) << " (" << m->openEdges
-        << " open, " << m->nonManifoldEdges << " non-manifold edges), bounds " << box(m->bounds) << "\n";
+        << " open, " << m->nonManifoldEdges << " non-manifold edges)" << winding(*m) << ", bounds " << box(m->bounds)
+        << "\n";
   }
 
   out << "nodes:\n";

@@ -69,6 +69,9 @@ struct FrameResult {
   // With FrameOptions::keepShadowMaps: each light's depth map(s), named "L0" or "L0.face3".
   std::vector<DepthTexture> shadowMaps;
   std::vector<std::string> shadowMapNames;
+  // What the user should know about the scene, once each (`render` prints them on stderr): e.g.
+  // a shadow-casting mesh the shadow volumes cannot take as it is written (volume_casting.h).
+  std::vector<std::string> warnings;
 };
 
 // "01-ambient", "02-stencil-L0", ...: the next pass name of a frame, numbered in order so that

@@ -11,6 +11,11 @@
 //
 // Caveat for the caller: a world matrix with negative determinant (a mirror) turns the volume
 // inside out in window space, as it does the mesh; flip the front face for such instances.
+//
+// A mesh that is not a closed, consistently wound, outward surface gets the volume of
+// volume_casting.h: its winding reversed (inside out), or one volume per triangle turned towards
+// the light (open, non-manifold, inconsistently wound). Such a volume has its front cap also when
+// built without caps, because z-pass must count it (volume_casting.h says why).
 #pragma once
 
 #include <cstddef>
@@ -23,6 +28,7 @@
 #include "scene/scene.h"
 #include "shadow/extrusion.h"
 #include "shadow/silhouette.h"
+#include "shadow/volume_casting.h"
 
 namespace shadowref {
 
@@ -44,9 +50,14 @@ struct ShadowVolume {
   InfiniteIndexing infinite;
   std::vector<SilhouetteEdge> silhouette;  // as found, oriented in the light-facing triangle
   std::vector<glm::uvec3> sides;           // counter-clockwise seen from outside the volume
-  std::vector<glm::uvec3> frontCap;        // empty unless built with caps
+  std::vector<glm::uvec3> frontCap;        // empty unless built with caps or frontCapInZPass()
   std::vector<glm::uvec3> backCap;         // empty unless built with caps and L_w != 0
   ShadowVolumeStats stats;
+  VolumeCasting casting = VolumeCasting::Silhouette;
+
+  // Whether z-pass draws the front cap of this volume too (volume_casting.h): for every mesh the
+  // volumes do not cast as it is written.
+  bool frontCapInZPass() const { return casting != VolumeCasting::Silhouette; }
 
   const std::vector<glm::uvec3>& part(VolumePart p) const {
     return p == VolumePart::Side ? sides : p == VolumePart::FrontCap ? frontCap : backCap;
@@ -58,7 +69,20 @@ struct ShadowVolume {
 struct ShadowVolumeWorkspace {
   std::vector<uint8_t> facing;
   SilhouetteWorkspace silhouette;
+  // Reversed and two-sided casting: each triangle's orientation towards the light (+1 as wound,
+  // -1 turned round, 0 not casting), and per edge the signed count of the oriented triangles that
+  // run it v0 -> v1, with the last triangle that ran it each way.
+  std::vector<int8_t> orientation;
+  std::vector<int32_t> edgeCount;
+  std::vector<glm::uvec2> edgeTriangle;
 };
+
+// The orientation of every triangle towards `light` as `casting` takes it: Silhouette +1 for a
+// light-facing triangle; Reversed -1 for a triangle whose inward normal faces the light;
+// TwoSided +1 or -1, whichever side faces the light. 0 when it does not cast (the light in its
+// plane, or facing its other side). `orientation` is resized.
+void orientTowardsLight(const Mesh& mesh, const glm::dvec4& light, VolumeCasting casting,
+                        std::vector<int8_t>& orientation);
 
 // `light` in the mesh's object space: (position, 1) or (direction towards the light, 0).
 // withCaps: also the front and back caps (z-fail); without them the sides alone (z-pass).
@@ -69,10 +93,10 @@ ShadowVolume buildShadowVolume(const Mesh& mesh, const glm::dvec4& light,
                                SilhouetteAlgorithm algorithm = SilhouetteAlgorithm::Kuhn, bool withCaps = true);
 
 // The union of one small volume per light-facing triangle (its three edges extruded, the
-// triangle as front cap, the triangle at infinity reversed as back cap). Counting through it gives
-// the same per-pixel stencil as the silhouette volume, because interior sides come in pairs of
-// opposite orientation that cancel: an invariant for tests and a teaching view of why the
-// silhouette suffices.
+// triangle as front cap, the triangle at infinity reversed as back cap), the triangles oriented
+// as orientTowardsLight does for the mesh's casting. Counting through it gives the same per-pixel
+// stencil as the silhouette volume, because interior sides come in pairs of opposite orientation
+// that cancel: an invariant for tests and a teaching view of why the silhouette suffices.
 ShadowVolume buildTriangleVolumes(const Mesh& mesh, const glm::dvec4& light, bool withCaps = true);
 
 }  // namespace shadowref

@@ -17,6 +17,7 @@
 #include "shadow/soft_lights.h"
 #include "shadow/stencil_counting.h"
 #include "shadow/technique.h"
+#include "shadow/volume_casting.h"
 
 namespace shadowref {
 
@@ -183,6 +184,19 @@ void drawVolumeView(Pipeline& pipeline, const RenderState& base, const Scene& sc
   }
 }
 
+// One warning per distinct shadow mesh the volumes do not cast as it is written, in the order of
+// the instances that cast it.
+void addCastingWarnings(std::span<const PreparedInstance> prepared, std::vector<std::string>& warnings) {
+  std::vector<const Mesh*> seen;
+  for (const PreparedInstance& p : prepared) {
+    const Mesh* mesh = p.instance->shadowMesh;
+    if (!mesh || std::find(seen.begin(), seen.end(), mesh) != seen.end()) continue;
+    seen.push_back(mesh);
+    std::string warning = castingWarning(*mesh);
+    if (!warning.empty()) warnings.push_back(std::move(warning));
+  }
+}
+
 std::string lightNote(size_t index, const Light& light, const LightTotals& t, const RasterStats& before,
                       const RasterStats& after) {
   using std::to_string;
@@ -218,6 +232,7 @@ void renderShadowVolumes(const Scene& scene, VolumeCounting method, const FrameO
   const SceneView view = makeCameraView(scene, true);
   const std::vector<Instance> instances = scene.instances();
   const std::vector<PreparedInstance> prepared = prepareInstances(instances, view, &pipeline);
+  addCastingWarnings(prepared, result.warnings);
   int passCounter = 0;
   // Every pass ends inside fn (drawLit, drawVolumePass, drawVolumeView end theirs).
   auto pass = [&](const std::string& what, auto&& fn) {

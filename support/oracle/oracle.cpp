@@ -20,13 +20,18 @@ glm::dvec3 toWorld(const glm::dmat4& world, const glm::dvec3& p) {
   return glm::dvec3(h) / h.w;
 }
 
-void appendTriangles(const Mesh& mesh, const glm::dmat4& world, int instance, std::vector<BvhTriangle>& out) {
+// The mesh's triangles in world space, wound counter-clockwise seen from their outside there (a
+// mirroring world matrix reverses the winding; the renderer flips its front face for it).
+// `backCulled`: as the scene pass draws them, for the primary rays.
+void appendTriangles(const Mesh& mesh, const glm::dmat4& world, int instance, bool backCulled,
+                     std::vector<BvhTriangle>& out) {
   std::vector<glm::dvec3> p;
   p.reserve(mesh.positions.size());
   for (const glm::dvec3& v : mesh.positions) p.push_back(toWorld(world, v));
+  const bool mirrored = glm::determinant(world) < 0.0;
   for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
     const glm::uvec3 i = mesh.triangles[t];
-    out.push_back(BvhTriangle{p[i[0]], p[i[1]], p[i[2]], instance, t});
+    out.push_back(BvhTriangle{p[i[0]], p[i[mirrored ? 2 : 1]], p[i[mirrored ? 1 : 2]], instance, t, backCulled});
   }
 }
 
@@ -45,9 +50,9 @@ SceneGeometry gatherGeometry(const Scene& scene, const Light& light, const Oracl
   all.add(scene.camera.eye);
   for (size_t i = 0; i < g.instances.size(); ++i) {
     const Instance& inst = g.instances[i];
-    appendTriangles(*inst.mesh, inst.world, static_cast<int>(i), visible);
+    appendTriangles(*inst.mesh, inst.world, static_cast<int>(i), true, visible);
     if (castsShadowFor(inst, light, options.respectRange))
-      appendTriangles(*inst.shadowMesh, inst.world, static_cast<int>(i), casters);
+      appendTriangles(*inst.shadowMesh, inst.world, static_cast<int>(i), false, casters);
     if (!inst.worldBounds.empty()) {
       all.add(inst.worldBounds.min);
       all.add(inst.worldBounds.max);
@@ -97,7 +102,7 @@ PixelResult countCrossings(const WorldVolumes& volumes, const std::vector<uint32
       else r.ambiguous = true;
     }
     if (behind) r.zfail += front ? -1 : 1;
-    else if (v.part == VolumePart::Side) r.zpass += front ? 1 : -1;
+    else if (v.countedByZPass) r.zpass += front ? 1 : -1;
   }
   return r;
 }
@@ -161,6 +166,7 @@ OracleImage castOracle(const Scene& scene, const Light& light, const OracleOptio
   img.hitMask.assign(n, 0);
   img.nearEdge.assign(n, 0);
   img.hitInstance.assign(n, -1);
+  img.hitTriangle.assign(n, 0);
   img.hitPoint.assign(n, glm::dvec3(0.0));
   std::vector<uint8_t> ambiguous(n, 0);
 
@@ -180,6 +186,7 @@ OracleImage castOracle(const Scene& scene, const Light& light, const OracleOptio
         const glm::dvec3 p = ray.origin + hit.t * ray.direction;
         img.hitMask[i] = 1;
         img.hitInstance[i] = hit.instance;
+        img.hitTriangle[i] = hit.triangle;
         img.hitPoint[i] = p;
         img.lit[i] = lightVisible(geometry, light, p);
       }

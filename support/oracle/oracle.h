@@ -3,11 +3,14 @@
 // precision), counts the signed crossings of the shadow-volume polygons along the ray in exact
 // projective form, and casts a shadow ray to the light.
 //
-//   zpass: crossings of the volume SIDES (z-pass draws no caps) from the near plane to the hit,
-//          +1 entering through a front face, -1 leaving through a back face — what z-pass counts
-//          with INCR on front and DECR on back faces where the depth test passes
+//   zpass: crossings of what z-pass draws — the volume SIDES, and the front caps of the meshes
+//          the volumes do not cast as written (shadow/volume_casting.h) — from the near plane to
+//          the hit, +1 entering through a front face, -1 leaving through a back face: what z-pass
+//          counts with INCR on front and DECR on back faces where the depth test passes
 //          ([Kuhn 2016, §3.1]). The ray starts on the near plane because the rasterizer clips what
 //          lies before it.
+//   The primary ray's hit is the first FRONT face (of the render meshes), as the scene pass culls
+//   back faces: through an open roof from inside, the ray goes on to what is beyond it.
 //   zfail: crossings of sides and caps from the hit to infinity, +1 for back faces, -1 for front
 //          faces — what z-fail counts where the depth test fails ([Kuhn 2016, §3.4]). A front cap
 //          lying in the hit surface counts here, as its fragments fail LESS against the equal scene
@@ -20,7 +23,8 @@
 // [Kuhn 2016, §3.4]).
 //
 //   lit: 1 when a shadow ray from the hit to the light meets no shadow-casting geometry (the
-//        instances' shadowMesh, within range), 0 otherwise; 0 without a hit.
+//        instances' shadowMesh, within range, every triangle two-sided), 0 otherwise; 0 without
+//        a hit.
 //   nearEdge: pixels a comparison with the rasterizer may leave out: within one pixel of a
 //        projected contour edge of the geometry or of a volume (edges whose two triangles face the
 //        eye differently, open and non-manifold edges), pixels whose hit lies within a relative
@@ -53,6 +57,7 @@ struct OracleImage {
   std::vector<int> zpass, zfail;
   std::vector<uint8_t> lit, hitMask, nearEdge;
   std::vector<int> hitInstance;          // index into Scene::instances(), -1 without a hit
+  std::vector<uint32_t> hitTriangle;     // index into that instance's mesh triangles; 0 without a hit
   std::vector<glm::dvec3> hitPoint;      // world space; 0 without a hit
 
   size_t index(int x, int y) const { return static_cast<size_t>(y) * width + x; }

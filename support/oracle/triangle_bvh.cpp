@@ -110,6 +110,7 @@ RayHit TriangleBvh::firstHit(const glm::dvec3& origin, const glm::dvec3& directi
     for (uint32_t i = n.first; i < n.first + n.count; ++i) {
       double t = 0.0;
       const BvhTriangle& tri = triangles_[i];
+      if (tri.backCulled && glm::dot(glm::cross(tri.b - tri.a, tri.c - tri.a), direction) >= 0.0) continue;
       if (!intersectTriangle(tri, origin, direction, tMin, tMax, t)) continue;
       if (bestTri && (t > best.t || (t == best.t && !closerTie(tri, *bestTri)))) continue;
       best = RayHit{t, tri.instance, tri.triangle};

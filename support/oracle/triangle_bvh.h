@@ -16,6 +16,9 @@ struct BvhTriangle {
   glm::dvec3 a{0.0}, b{0.0}, c{0.0};
   int instance = -1;
   uint32_t triangle = 0;  // index into the instance mesh's triangles
+  // firstHit passes through the triangle from behind (its normal, (b - a) x (c - a), pointing
+  // along the ray), as the scene pass culls back faces; anyHit never does.
+  bool backCulled = false;
 };
 
 struct RayHit {
@@ -35,7 +38,8 @@ class TriangleBvh {
   TriangleBvh() = default;
   explicit TriangleBvh(std::vector<BvhTriangle> triangles);
 
-  // The nearest hit with t in [tMin, tMax]; ties go to the lower (instance, triangle).
+  // The nearest hit with t in [tMin, tMax], not counting the back of a backCulled triangle; ties
+  // go to the lower (instance, triangle).
   RayHit firstHit(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
   bool anyHit(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
 

@@ -20,6 +20,7 @@ void appendPart(const ShadowVolume& volume, VolumePart part, const std::vector<g
     v.instance = instance;
     v.volume = volumeIndex;
     v.part = part;
+    v.countedByZPass = part == VolumePart::Side || (part == VolumePart::FrontCap && volume.frontCapInZPass());
     v.orientation = orientation;
     v.index = {t[0], t[1], t[2]};
     out.triangles.push_back(v);

@@ -26,6 +26,7 @@ struct VolumeTriangle {
   int instance = -1;           // index into Scene::instances()
   int volume = -1;             // index of the volume in WorldVolumes::volumeInstances
   VolumePart part = VolumePart::Side;
+  bool countedByZPass = true;  // drawn by z-pass: a side, or the front cap of a volume whose frontCapInZPass()
   double orientation = 1.0;    // -1 for a mirroring world matrix
   std::array<uint32_t, 3> index{};        // vertex indices within the volume (for adjacency)
 

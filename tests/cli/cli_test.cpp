@@ -380,3 +380,52 @@ TEST_CASE("render with the reference and the fast pipeline writes the same pixel
   CHECK(bad.err.find("--pipeline") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "x.exr"));
 }
+
+TEST_CASE("render warns once per open, non-manifold, inconsistently wound or inside-out mesh, naming it and what "
+          "it does; a closed scene gets no warning", "[cli]") {
+  const std::string png = (scratch() / "irregular.png").string();
+  const Run r = run("render scenes/irregular.yaml -D image.width=64 -D image.height=48 -o '" + png + "'");
+  INFO(r.err);
+  CHECK(r.status == 0);
+  auto lines = [&](const std::string& needle) {
+    size_t n = 0;
+    for (size_t at = r.err.find(needle); at != std::string::npos; at = r.err.find(needle, at + 1)) ++n;
+    return n;
+  };
+  CHECK(lines("warning: ") == 4);
+  CHECK(lines("warning: mesh 'triangle' is open (3 edges with one triangle); it casts its shadow as a two-sided "
+              "surface") == 1);
+  CHECK(lines("warning: mesh 'fins' is open (6 edges with one triangle), non-manifold (1 edges with three or more "
+              "triangles)") == 1);
+  CHECK(lines("warning: mesh 'inside_out_cube' is inside out (closed, but it encloses a negative volume, -1") == 1);
+  CHECK(lines("the shadow volumes take its winding as reversed") == 1);
+  CHECK(lines("warning: mesh 'flipped_face_cube' is inconsistently wound (4 edges whose two triangles run them the "
+              "same way)") == 1);
+  // The tent under two lights: one warning, not one per light.
+  const Run tent = run("render scenes/tent.yaml -D image.width=64 -D image.height=48 -o '" + png + "'");
+  CHECK(tent.status == 0);
+  CHECK(tent.err.find("warning: mesh 'tent' is open (5 edges with one triangle)") != std::string::npos);
+  CHECK(tent.err.find("warning: ") == tent.err.rfind("warning: "));
+  // --quiet prints nothing but errors; a scene of closed outward meshes has nothing to warn about.
+  CHECK(run("render scenes/tent.yaml -D image.width=64 -D image.height=48 --quiet -o '" + png + "'").err.empty());
+  CHECK(run("render scenes/minimal.yaml -D image.width=64 -D image.height=48 -o '" + png + "'").err.find("warning") ==
+        std::string::npos);
+}
+
+TEST_CASE("info reports an inside-out closed mesh by the sign of the volume it encloses", "[cli]") {
+  const Run r = run("info scenes/irregular.yaml");
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(r.out.find("inside_out_cube: 12 triangles, 8 welded vertices, 18 edges, closed (0 open, 0 non-manifold "
+                   "edges), encloses volume -1 (negative: inside out, every triangle wound clockwise seen from "
+                   "outside)") != std::string::npos);
+  CHECK(r.out.find("flipped_face_cube: 12 triangles, 8 welded vertices, 18 edges, closed (0 open, 0 non-manifold "
+                   "edges), inconsistently wound (4 edges whose two triangles run them the same way)") !=
+        std::string::npos);
+  CHECK(r.out.find("triangle: 1 triangles, 3 welded vertices, 3 edges, open (3 open, 0 non-manifold edges), bounds") !=
+        std::string::npos);
+  // A unit cube wound the right way encloses +1 and is not called inside out.
+  const Run minimal = run("info scenes/minimal.yaml");
+  CHECK(minimal.out.find("inside out") == std::string::npos);
+  CHECK(minimal.out.find("encloses volume ") != std::string::npos);
+}

@@ -203,7 +203,8 @@ TEST_CASE("describeScene lists nodes, meshes with topology, lights, bounds and t
                               "nodes:\n  - {name: crate, mesh: box, translate: [2, 0.5, 0]}\n"
                               "shadow: {method: zfail}\n");
   const std::string text = describeScene(s);
-  CHECK_THAT(text, Contains("box: 12 triangles, 8 welded vertices, 18 edges, closed (0 open, 0 non-manifold edges)"));
+  CHECK_THAT(text, Contains("box: 12 triangles, 8 welded vertices, 18 edges, closed (0 open, 0 non-manifold edges), "
+                            "encloses volume 1, bounds"));
   CHECK_THAT(text, Contains("crate  mesh box, material default, world bounds (1.5, 0, -0.5) .. (2.5, 1, 0.5)"));
   CHECK_THAT(text, Contains("bulb: point at (0, 3, 0)"));
   // The technique's settings are described by the technique (src/shadow), passed in.

@@ -170,3 +170,59 @@ TEST_CASE("crease normals keep a cube's corners sharp and split them per face", 
   shadowref::testing::requireNormalsAgreeWithWinding(m);
   for (const glm::dvec3& n : m.normals) CHECK(std::abs(n.x) + std::abs(n.y) + std::abs(n.z) == Approx(1.0));
 }
+
+TEST_CASE("every triangle knows its three edges, also the triangles of a non-manifold edge", "[mesh]") {
+  Mesh m = fromTriangles({{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, -1, 0}},
+                         {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
+  buildAdjacency(m);
+  REQUIRE(m.triangleEdges.size() == 3);
+  for (uint32_t t = 0; t < 3; ++t)
+    for (int i = 0; i < 3; ++i) {
+      // The edge stands for the unordered pair of the triangle's corners i and i + 1.
+      const Edge& e = m.edges.at(m.triangleEdges[t][i]);
+      const uint32_t a = m.weldedTriangles[t][i], b = m.weldedTriangles[t][(i + 1) % 3];
+      CHECK(((e.v0 == a && e.v1 == b) || (e.v0 == b && e.v1 == a)));
+    }
+  // The shared edge 0-1 is one Edge for all three fins.
+  CHECK(m.triangleEdges[0][0] == m.triangleEdges[1][0]);
+  CHECK(m.triangleEdges[0][0] == m.triangleEdges[2][0]);
+}
+
+TEST_CASE("a closed mesh wound clockwise seen from outside is inside out: it encloses a negative volume",
+          "[mesh]") {
+  Mesh m = tetrahedron();
+  for (glm::uvec3& t : m.triangles) std::swap(t.y, t.z);
+  buildAdjacency(m);
+  CHECK(m.topology == Topology::Closed);
+  CHECK(m.inconsistentEdges == 0);
+  CHECK(m.enclosedVolume == Approx(-1.0 / 6.0));  // the tetrahedron's 1/6, negated
+  CHECK(m.insideOut);
+  Mesh outward = tetrahedron();
+  buildAdjacency(outward);
+  CHECK(outward.enclosedVolume == Approx(1.0 / 6.0));
+  CHECK_FALSE(outward.insideOut);
+}
+
+TEST_CASE("neither an open nor an inconsistently wound mesh, nor a closed one enclosing nothing, is inside out",
+          "[mesh]") {
+  Mesh open = tetrahedron();
+  open.triangles.pop_back();
+  for (glm::uvec3& t : open.triangles) std::swap(t.y, t.z);
+  buildAdjacency(open);
+  CHECK_FALSE(open.insideOut);  // "inside" needs a closed surface
+
+  Mesh mixed = tetrahedron();
+  std::swap(mixed.triangles[3].y, mixed.triangles[3].z);
+  std::swap(mixed.triangles[2].y, mixed.triangles[2].z);
+  std::swap(mixed.triangles[1].y, mixed.triangles[1].z);  // three of four reversed: volume < 0
+  buildAdjacency(mixed);
+  CHECK(mixed.inconsistentEdges > 0);
+  CHECK_FALSE(mixed.insideOut);
+
+  // A triangle and its reverse, back to back: closed and consistent, enclosing nothing.
+  Mesh sheet = fromTriangles({{0.1, 0.2, 0.3}, {1.1, 0.2, 0.3}, {1.1, 1.7, 0.9}}, {{0, 1, 2}, {0, 2, 1}});
+  buildAdjacency(sheet);
+  CHECK(sheet.topology == Topology::Closed);
+  CHECK(sheet.inconsistentEdges == 0);
+  CHECK_FALSE(sheet.insideOut);
+}
