@@ -90,6 +90,11 @@ bool sameFile(const std::string& a, const std::string& b) {
 // 1.2 GiB (e.g. 8 lights at 4096 x 4096, or 2 at 8192 x 8192).
 constexpr uint64_t kMaxKeptStencilCounts = uint64_t(1) << 27;
 
+// The per-light visibility values a render may keep for --dump visibility: each a float while
+// counting, again when finished and once more as an EXR channel, so 2^26 of them take about
+// 1 GiB at most (e.g. 4 lights at 4096 x 4096, 64 at 1024 x 1024).
+constexpr uint64_t kMaxVisibilityValues = uint64_t(1) << 26;
+
 bool wants(const std::vector<std::string>& dumps, const char* what) {
   return std::find(dumps.begin(), dumps.end(), what) != dumps.end();
 }
@@ -136,8 +141,9 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_option("--dump", args.dumps,
                      "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (per light: false-colour "
                      "PNG with legend, and stencil.L<i> EXR channels), 'depth' (grey PNG), 'shadowmap' (per light: grey PNG "
-                     "and EXR with the Z channel)")
-      ->check(CLI::IsMember({"passes", "stencil", "depth", "shadowmap"}));
+                     "and EXR with the Z channel), 'visibility' (per scene light: grey PNG, 1 lit white, 0 in shadow "
+                     "black, and visibility.L<i> EXR channels, for every method)")
+      ->check(CLI::IsMember({"passes", "stencil", "depth", "shadowmap", "visibility"}));
   render->add_option("--dump-region", args.dumpRegion, "x,y,w,h: print the stencil counts of that region per light "
                                                        "(row 0 is the bottom)");
   render->add_option("--view", args.view,
@@ -222,6 +228,17 @@ int runRender(const RenderArgs& args) {
       return kBadInput;
     }
   }
+  options.keepVisibility = wants(args.dumps, "visibility");
+  if (options.keepVisibility) {
+    const std::optional<uint64_t> values = checkedMul(
+        checkedMul(uint64_t(scene->width), uint64_t(scene->height)).value_or(UINT64_MAX), uint64_t(scene->lights.size()));
+    if (!values || *values > kMaxVisibilityValues) {
+      std::cerr << "--dump visibility: " << scene->lights.size() << " lights x " << scene->width << "x"
+                << scene->height << " pixels is more than the limit of " << kMaxVisibilityValues
+                << " (2^26) visibility values; render fewer lights (-D lights.NAME=off) or a smaller image\n";
+      return kBadInput;
+    }
+  }
   options.keepShadowMaps = wants(args.dumps, "shadowmap");
   if (args.view == "volumes") options.volumeView = VolumeViewMode::FrontBack;
   if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
@@ -270,9 +287,16 @@ int runRender(const RenderArgs& args) {
       passFiles.push_back(path);
     };
     const FrameResult frame = renderFrame(*scene, options);
-    const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
+    ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
+    OutputMetadata frameMetadata = showing("frame");
+    // visibility.L<i>: light i of the scene, named in the header (shadowref:visibility.L<i>).
+    for (size_t i = 0; i < frame.visibility.size(); ++i) {
+      const std::string channel = "visibility.L" + std::to_string(i);
+      extras.channels.push_back(NamedChannel::floatChannel(channel, frame.visibility[i]));
+      frameMetadata.extra.emplace_back("shadowref:" + channel, scene->lights[i].name);
+    }
     for (const std::string& out : outputs) {
-      writeOutput(frame, out, extras, showing("frame"));
+      writeOutput(frame, out, extras, frameMetadata);
       if (!args.quiet) std::cerr << "wrote " << out << '\n';
     }
     if (dumpStencil && stencilPasses == 0 && !args.quiet)
@@ -282,6 +306,14 @@ int runRender(const RenderArgs& args) {
       for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(frame.framebuffer.depthCodec().decode(frame.framebuffer.depthCodes()[i]));
       const std::string path = siblingPath(outputs.front(), "depth");
       writeGreyPng(depth, scene->width, scene->height, path, 0.0f, 1.0f, showing("depth"));
+      passFiles.push_back(path);
+    }
+    for (size_t i = 0; i < frame.visibility.size(); ++i) {
+      const std::string light = "L" + std::to_string(i);
+      const std::string path = siblingPath(outputs.front(), "visibility-" + light);
+      OutputMetadata m = showing("visibility " + light + " '" + scene->lights[i].name + "'");
+      m.extra.emplace_back("shadowref:light", scene->lights[i].name);
+      writeGreyPng(frame.visibility[i], scene->width, scene->height, path, 0.0f, 1.0f, m);
       passFiles.push_back(path);
     }
     for (size_t i = 0; i < frame.shadowMaps.size(); ++i) {

@@ -9,6 +9,7 @@
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
 #include "shadow/technique_registry.h"
+#include "shadow/visibility.h"
 
 namespace shadowref {
 
@@ -47,6 +48,11 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
     drawLit(pipeline, state, scene, view, prepared, scene.lights, true);
   });
   if (options.onPass) options.onPass("01-lit", pipeline.framebuffer());
+  if (options.keepVisibility) {
+    VisibilityCounts counts(scene.lights.size(), pipeline.framebuffer().pixelCount());
+    for (size_t l = 0; l < scene.lights.size(); ++l) counts.addLit(l);
+    result.visibility = counts.finish();
+  }
 }
 
 }  // namespace
@@ -65,7 +71,7 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
     technique = findTechnique(options.method, among);
     if (!technique) throw std::invalid_argument("shadow method " + unknownTechniqueMessage(options.method, among));
   }
-  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}};
+  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}, {}};
   // The pixel history always runs on the reference: its events are the definition.
   const PipelineKind kind = options.observer ? PipelineKind::Reference : options.pipeline;
   const std::unique_ptr<Pipeline> pipeline = makePipeline(kind, result.framebuffer, options.threads);
@@ -73,6 +79,8 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
   if (options.observer) pipeline->watchPixel(options.watchX, options.watchY, options.observer);
   technique->render(scene, options, result, *pipeline);
   pipeline->endPass();  // before the result leaves: the framebuffer is complete
+  if (options.keepVisibility && result.visibility.size() != scene.lights.size())
+    throw std::runtime_error("the shadow method " + std::string(technique->name) + " computes no per-light visibility");
   result.stats += pipeline->stats();
   return result;
 }

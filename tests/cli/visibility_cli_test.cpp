@@ -1,0 +1,140 @@
+// What a user comparing shadows meets on the command line: --dump visibility's EXR channels and
+// PNG views with the light names in their metadata.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out, err;
+};
+
+fs::path scratch() {
+  const fs::path dir = fs::temp_directory_path() / ("shadowref-visibility-cli-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Run shadowref(const std::string& args) {
+  const fs::path dir = scratch();
+  const std::string cmd = std::string("cd '") + SHADOWREF_SOURCE_DIR + "' && '" + SHADOWREF_CLI + "' " + args + " >'" +
+                          (dir / "out.txt").string() + "' 2>'" + (dir / "err.txt").string() + "'";
+  const int raw = std::system(cmd.c_str());
+  Run r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(dir / "out.txt");
+  r.err = slurp(dir / "err.txt");
+  return r;
+}
+
+// The box over a plane of tests/shadow/visibility_test.cpp, with a second light.
+const std::string kScene =
+    "image: {width: 64, height: 64}\n"
+    "camera: {eye: [0, 10, 0], target: [0, 0, 0], up: [0, 0, -1], fov: 60}\n"
+    "lights:\n"
+    "  - {name: sun, type: directional, direction: [1, -1, 0]}\n"
+    "  - {name: top, type: directional, direction: [0, -1, 0]}\n"
+    "meshes:\n  ground: {plane: {size: [10, 10]}}\n  box: {box: {size: [1, 1, 1]}}\n"
+    "nodes:\n  - {name: ground, mesh: ground}\n  - {name: box, mesh: box, translate: [0, 1, 0]}\n"
+    "shadow: {method: zfail}\n";
+
+std::string sceneFile() {
+  const fs::path p = scratch() / "box.yaml";
+  std::ofstream(p) << kScene;
+  return p.string();
+}
+
+struct Read {
+  std::vector<std::string> channels;
+  std::map<std::string, std::string> attributes;
+  std::vector<float> pixels;  // every channel as float, top row first
+  int width = 0, height = 0;
+};
+
+Read readImage(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  REQUIRE(in);
+  Read r;
+  const OIIO::ImageSpec& spec = in->spec();
+  r.channels = spec.channelnames;
+  for (const OIIO::ParamValue& p : spec.extra_attribs) {
+    const std::string name = p.name().string();
+    if (name.rfind("shadowref:", 0) == 0) r.attributes[name] = p.get_string();
+  }
+  r.width = spec.width;
+  r.height = spec.height;
+  r.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+  REQUIRE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, r.pixels.data()));
+  return r;
+}
+
+// The value of channel `name` at framebuffer pixel (x, y) (row 0 at the bottom).
+float channelAt(const Read& r, const std::string& name, int x, int y) {
+  size_t c = 0;
+  while (c < r.channels.size() && r.channels[c] != name) ++c;
+  REQUIRE(c < r.channels.size());
+  const size_t row = size_t(r.height - 1 - y);
+  return r.pixels[(row * size_t(r.width) + size_t(x)) * r.channels.size() + c];
+}
+
+}  // namespace
+
+TEST_CASE("--dump visibility: EXR channels per light, named in the metadata, and PNG views", "[cli][visibility]") {
+  const fs::path dir = scratch() / "vis";
+  fs::remove_all(dir);
+  const std::string scene = sceneFile();
+  for (const char* method : {"zpass", "shadowmap"}) {
+    INFO(method);
+    const std::string exr = (dir / method / "f.exr").string();
+    const Run r = shadowref("render '" + scene + "' --method " + method + " --dump visibility --quiet -o '" + exr + "'");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const Read frame = readImage(exr);
+    CHECK(std::count(frame.channels.begin(), frame.channels.end(), "visibility.L0") == 1);
+    CHECK(std::count(frame.channels.begin(), frame.channels.end(), "visibility.L1") == 1);
+    CHECK(frame.attributes.at("shadowref:visibility.L0") == "sun");
+    CHECK(frame.attributes.at("shadowref:visibility.L1") == "top");
+    // Pixel (39, 32) lies in the sun's shadow, not in the top light's; (24, 32) in neither.
+    CHECK(channelAt(frame, "visibility.L0", 39, 32) == 0.0f);
+    CHECK(channelAt(frame, "visibility.L1", 39, 32) == 1.0f);
+    CHECK(channelAt(frame, "visibility.L0", 24, 32) == 1.0f);
+    for (int light = 0; light < 2; ++light) {
+      const std::string name = "visibility.L" + std::to_string(light);
+      const Read png = readImage((dir / method / ("f.visibility-L" + std::to_string(light) + ".png")).string());
+      CHECK(png.attributes.at("shadowref:light") == (light == 0 ? "sun" : "top"));
+      CHECK(png.attributes.at("shadowref:content") ==
+            "visibility L" + std::to_string(light) + (light == 0 ? " 'sun'" : " 'top'"));
+      // The view is the channel: 1 white, 0 black.
+      for (int y : {0, 32, 63})
+        for (int x : {24, 39, 50}) CHECK(channelAt(png, png.channels[0], x, y) == channelAt(frame, name, x, y));
+    }
+  }
+}
+
+TEST_CASE("render --help names the visibility dump", "[cli][visibility]") {
+  const Run r = shadowref("render --help");
+  CHECK(r.status == 0);
+  CHECK(r.out.find("'visibility'") != std::string::npos);
+}
