@@ -1,5 +1,5 @@
 // What a user comparing shadows meets on the command line: --dump visibility's EXR channels and
-// PNG views with the light names in their metadata.
+// PNG views with the light names in their metadata, -D removing a light, -D errors (exit 2).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -131,6 +131,34 @@ TEST_CASE("--dump visibility: EXR channels per light, named in the metadata, and
         for (int x : {24, 39, 50}) CHECK(channelAt(png, png.channels[0], x, y) == channelAt(frame, name, x, y));
     }
   }
+}
+
+TEST_CASE("-D lights.NAME=off renders the scene without that light", "[cli][visibility]") {
+  const std::string scene = sceneFile();
+  const fs::path dir = scratch();
+  std::string one = kScene;
+  one.erase(one.find("  - {name: top"), one.find("meshes:") - one.find("  - {name: top"));
+  const fs::path oneFile = dir / "one.yaml";
+  std::ofstream(oneFile) << one;
+  const std::string a = (dir / "removed.exr").string(), b = (dir / "one.exr").string();
+  REQUIRE(shadowref("render '" + scene + "' -D lights.top=off --dump visibility --quiet -o '" + a + "'").status == 0);
+  REQUIRE(shadowref("render '" + oneFile.string() + "' --dump visibility --quiet -o '" + b + "'").status == 0);
+  const Read ra = readImage(a), rb = readImage(b);
+  CHECK(ra.channels == rb.channels);  // R, G, B, A, Z, stencil, visibility.L0: one light
+  CHECK(ra.pixels == rb.pixels);
+  CHECK(ra.attributes.at("shadowref:visibility.L0") == "sun");
+}
+
+TEST_CASE("-D naming an unknown light or node exits 2 with the place on the command line", "[cli][visibility]") {
+  const std::string scene = sceneFile();
+  const fs::path out = scratch() / "never.png";
+  Run r = shadowref("render '" + scene + "' -D lights.son=off -o '" + out.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err == "<command line>:1:8: lights.son: no light named 'son'; did you mean 'sun'?\n");
+  r = shadowref("check '" + scene + "' -D camera.fov=40 -D nodes.bx.cast_shadows=false");
+  CHECK(r.status == 2);
+  CHECK(r.err == "<command line>:2:7: nodes.bx: no node with the path 'bx'; did you mean 'box'?\n");
+  CHECK_FALSE(fs::exists(out));
 }
 
 TEST_CASE("render --help names the visibility dump", "[cli][visibility]") {
