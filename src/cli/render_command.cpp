@@ -100,8 +100,8 @@ bool wants(const std::vector<std::string>& dumps, const char* what) {
 }
 
 void writeOutput(const FrameResult& frame, const std::string& out, const ExrExtras& extras,
-                 const OutputMetadata& metadata) {
-  ensureParentDirectory(out);
+                 const OutputMetadata& metadata, std::vector<std::string>& madeFolders) {
+  ensureParentDirectory(out, &madeFolders);
   const std::string ext = lowercase(std::filesystem::path(out).extension().string());
   if (ext == ".exr") writeExr(frame.framebuffer, out, extras, metadata);
   else writeImage(frame.framebuffer, out, metadata);
@@ -125,7 +125,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_option("scene", args.scene.scene, "Scene file (YAML); omitted: the built-in room");
   render->add_option("-o,--output", args.outputs,
                      "Output image, .png (8-bit colour) or .exr (R,G,B,A float, Z float, stencil uint32); "
-                     "repeatable. Default: out/<scene>.png");
+                     "repeatable; missing folders are made. Default: out/<scene>.png");
   render->add_option("--method", args.method, methodHelp());
   render->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D camera.near=0.001")
       ->take_all()
@@ -176,6 +176,10 @@ int runRender(const RenderArgs& args) {
       return kBadInput;
     }
     anyExr = anyExr || ext == ".exr";
+    if (const std::string problem = outputFolderProblem(out); !problem.empty()) {
+      std::cerr << out << ": " << problem << '\n';
+      return kBadInput;
+    }
     if (!args.scene.scene.empty() && sameFile(out, args.scene.scene)) {
       std::cerr << out << ": refusing to write the output over the scene file itself\n";
       return kBadInput;
@@ -243,6 +247,7 @@ int runRender(const RenderArgs& args) {
   if (args.view == "volumes") options.volumeView = VolumeViewMode::FrontBack;
   if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
   std::vector<std::string> passFiles;
+  std::vector<std::string> madeFolders;  // by this render: taken away again if it fails
   std::string grids;  // --dump-region's text, one grid per light, printed after the render
   size_t stencilPasses = 0;
   try {
@@ -262,7 +267,7 @@ int runRender(const RenderArgs& args) {
           StencilViewOptions view;
           view.signedCounts = true;  // wrapping ops store -1 as 255
           const std::string path = siblingPath(outputs.front(), "stencil-" + light);
-          ensureParentDirectory(path);
+          ensureParentDirectory(path, &madeFolders);
           writeStencilPng(fb.stencil(), fb.width(), fb.height(), path, view, showing("stencil " + light));
           passFiles.push_back(path);
         }
@@ -273,7 +278,7 @@ int runRender(const RenderArgs& args) {
       }
       if (!dumpPasses) return;
       const std::string path = siblingPath(outputs.front(), "pass-" + pass);
-      ensureParentDirectory(path);
+      ensureParentDirectory(path, &madeFolders);
       // A volume pass changes only the stencil buffer: its picture is the stencil counts.
       if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
         StencilViewOptions view;
@@ -296,7 +301,7 @@ int runRender(const RenderArgs& args) {
       frameMetadata.extra.emplace_back("shadowref:" + channel, scene->lights[i].name);
     }
     for (const std::string& out : outputs) {
-      writeOutput(frame, out, extras, frameMetadata);
+      writeOutput(frame, out, extras, frameMetadata, madeFolders);
       if (!args.quiet) std::cerr << "wrote " << out << '\n';
     }
     if (dumpStencil && stencilPasses == 0 && !args.quiet)
@@ -336,6 +341,7 @@ int runRender(const RenderArgs& args) {
       for (const std::string& p : passFiles) std::cerr << "wrote " << p << '\n';
     if (args.stats) printStats(frame);
   } catch (const std::exception& e) {
+    removeEmptyFolders(madeFolders);
     std::cerr << "render: " << e.what() << '\n';
     return kFailed;
   }

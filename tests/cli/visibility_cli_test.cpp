@@ -1,5 +1,6 @@
 // What a user comparing shadows meets on the command line: --dump visibility's EXR channels and
-// PNG views with the light names in their metadata, -D removing a light, -D errors (exit 2).
+// PNG views with the light names in their metadata, -D removing a light, -D errors (exit 2), and
+// -o into folders that do not exist yet.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -159,6 +160,34 @@ TEST_CASE("-D naming an unknown light or node exits 2 with the place on the comm
   CHECK(r.status == 2);
   CHECK(r.err == "<command line>:2:7: nodes.bx: no node with the path 'bx'; did you mean 'box'?\n");
   CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("-o into folders that do not exist makes them; a failed write leaves none behind", "[cli][visibility]") {
+  const fs::path dir = scratch() / "folders";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = sceneFile();
+  const fs::path nested = dir / "a" / "b" / "f.png";
+  Run r = shadowref("render '" + scene + "' --quiet -o '" + nested.string() + "'");
+  CHECK(r.status == 0);
+  CHECK(fs::is_regular_file(nested));
+
+  // A part of the path is a file: refused before rendering (exit 2), nothing made.
+  std::ofstream(dir / "file") << "x";
+  r = shadowref("render '" + scene + "' --quiet -o '" + (dir / "file" / "c" / "f.png").string() + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("is not a folder") != std::string::npos);
+
+  // The folders are made, then the file cannot be (its name is longer than any file system allows):
+  // the render fails and takes away the folders it made.
+  const std::string tooLong((dir / "new" / "deeper" / (std::string(300, 'n') + ".png")).string());
+  r = shadowref("render '" + scene + "' --quiet -o '" + tooLong + "'");
+  CHECK(r.status == 1);
+  CHECK_FALSE(fs::exists(dir / "new"));
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  CHECK(left == std::vector<std::string>{"a", "file"});
 }
 
 TEST_CASE("render --help names the visibility dump", "[cli][visibility]") {
