@@ -102,7 +102,7 @@ float channelAt(const Read& r, const std::string& name, int x, int y) {
 
 }  // namespace
 
-TEST_CASE("--dump visibility: EXR channels per light, named in the metadata, and PNG views", "[cli][visibility]") {
+TEST_CASE("render --dump visibility: EXR channels per light, named in the metadata, and PNG views", "[cli][visibility]") {
   const fs::path dir = scratch() / "vis";
   fs::remove_all(dir);
   const std::string scene = sceneFile();
@@ -134,7 +134,7 @@ TEST_CASE("--dump visibility: EXR channels per light, named in the metadata, and
   }
 }
 
-TEST_CASE("-D lights.NAME=off renders the scene without that light", "[cli][visibility]") {
+TEST_CASE("render -D lights.NAME=off renders the scene without that light", "[cli][visibility]") {
   const std::string scene = sceneFile();
   const fs::path dir = scratch();
   std::string one = kScene;
@@ -150,7 +150,7 @@ TEST_CASE("-D lights.NAME=off renders the scene without that light", "[cli][visi
   CHECK(ra.attributes.at("shadowref:visibility.L0") == "sun");
 }
 
-TEST_CASE("-D naming an unknown light or node exits 2 with the place on the command line", "[cli][visibility]") {
+TEST_CASE("render and check with -D naming an unknown light or node exit 2 with the place on the command line", "[cli][visibility]") {
   const std::string scene = sceneFile();
   const fs::path out = scratch() / "never.png";
   Run r = shadowref("render '" + scene + "' -D lights.son=off -o '" + out.string() + "'");
@@ -162,7 +162,7 @@ TEST_CASE("-D naming an unknown light or node exits 2 with the place on the comm
   CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("-o into folders that do not exist makes them; a failed write leaves none behind", "[cli][visibility]") {
+TEST_CASE("render -o into folders that do not exist makes them, and a failed write leaves none behind", "[cli][visibility]") {
   const fs::path dir = scratch() / "folders";
   fs::remove_all(dir);
   fs::create_directories(dir);

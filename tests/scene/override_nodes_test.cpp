@@ -63,7 +63,7 @@ void requireSameFrame(const Scene& a, const Scene& b, const std::string& method)
 
 }  // namespace
 
-TEST_CASE("-D lights.NAME=off: two lights with one removed render as the one-light scene", "[overrides]") {
+TEST_CASE("overrides: -D lights.NAME=off: two lights with one removed render as the one-light scene", "[overrides]") {
   const std::string two = kHead + "lights:\n" + kKey + kFill + kBody;
   const std::string one = kHead + "lights:\n" + kKey + kBody;
   const Scene removed = load(two, {"lights.fill=off"});
@@ -80,7 +80,7 @@ TEST_CASE("-D lights.NAME=off: two lights with one removed render as the one-lig
   CHECK(byNumber.lights[0].spotCutoffDegrees == 30.0);
 }
 
-TEST_CASE("-D nodes.PATH: removing a node, its shadow flag, material and mesh", "[overrides]") {
+TEST_CASE("overrides: -D nodes.PATH: removing a node, its shadow flag, material and mesh", "[overrides]") {
   const std::string scene = kHead + "lights:\n" + kKey + kBody;
   // A removed group takes its children along.
   std::string withoutCamp = scene.substr(0, scene.find("  - name: camp"));
@@ -101,7 +101,7 @@ TEST_CASE("-D nodes.PATH: removing a node, its shadow flag, material and mesh", 
   CHECK(instances[2].mesh->name == "box");
 }
 
-TEST_CASE("-D meshes.NAME...: a key of the file's mesh source", "[overrides]") {
+TEST_CASE("overrides: -D meshes.NAME...: a key of the file's mesh source", "[overrides]") {
   const std::string scene = kHead + kBody;
   const Scene changed = load(scene, {"meshes.box.box.size=[1, 2, 1]"});
   std::string written = scene;
@@ -113,7 +113,7 @@ TEST_CASE("-D meshes.NAME...: a key of the file's mesh source", "[overrides]") {
         3 * load(scene).meshes[2]->triangles.size());
 }
 
-TEST_CASE("-D naming a light, node or mesh that is not there is an error on the command line", "[overrides]") {
+TEST_CASE("overrides: -D naming a light, node or mesh that is not there is an error on the command line", "[overrides]") {
   const std::string scene = kHead + "lights:\n" + kKey + kFill + kBody;
   CHECK(errorOf(scene, {"lights.fil=off"}) ==
         "<command line>:1:8: lights.fil: no light named 'fil'; did you mean 'fill'?");
