@@ -5,6 +5,7 @@
 #include <charconv>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
@@ -106,9 +107,43 @@ CLI::Validator wholeNumberIn(int min, int max) {
       "INT in " + range);
 }
 
-void ensureParentDirectory(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
+void ensureParentDirectory(const std::string& path, std::vector<std::string>* made) {
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path();
+  if (parent.empty()) return;
+  // The missing folders, innermost first, then made outermost first.
+  std::vector<fs::path> missing;
+  std::error_code ec;
+  for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    missing.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    if (fs::create_directory(*it) && made) made->push_back(it->string());
+  }
+  if (!fs::is_directory(parent)) throw std::runtime_error(parent.string() + " is not a folder");
+}
+
+void removeEmptyFolders(const std::vector<std::string>& made) {
+  for (auto it = made.rbegin(); it != made.rend(); ++it) {
+    std::error_code ec;
+    if (std::filesystem::is_empty(*it, ec) && !ec) std::filesystem::remove(*it, ec);
+  }
+}
+
+std::string outputFolderProblem(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  // The nearest part of the folder path that exists must be a folder.
+  for (fs::path p = fs::path(path).parent_path(); !p.empty(); p = p.parent_path()) {
+    const fs::file_status status = fs::status(p, ec);
+    if (fs::exists(status)) {
+      if (!fs::is_directory(status)) return "'" + p.string() + "' is not a folder, so no folder can be made in it";
+      return "";
+    }
+    if (p == p.parent_path()) break;
+  }
+  return "";
 }
 
 }  // namespace shadowref::cli

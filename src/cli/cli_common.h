@@ -44,7 +44,17 @@ bool reportUnknownSubcommand(const CLI::App& app, int argc, const char* const* a
 // both allowed); CLI::Range says "not in range" for both.
 CLI::Validator wholeNumberIn(int min, int max);
 
-// Creates the parent folders of `path`.
-void ensureParentDirectory(const std::string& path);
+// Creates the missing parent folders of `path`, appending each one it made to `made` (outermost
+// first) when given, so that a failed command can take them away again (removeEmptyFolders).
+void ensureParentDirectory(const std::string& path, std::vector<std::string>* made = nullptr);
+
+// Removes the folders of `made` that are empty, innermost first: what a failed command made and
+// did not fill.
+void removeEmptyFolders(const std::vector<std::string>& made);
+
+// Why the parent folders of `path` can neither be found nor made (a part of the path is a file),
+// or "" when they exist or can be made. Checked before rendering, so that such an -o is bad usage
+// (exit 2), found before any work is done.
+std::string outputFolderProblem(const std::string& path);
 
 }  // namespace shadowref::cli

@@ -90,13 +90,18 @@ bool sameFile(const std::string& a, const std::string& b) {
 // 1.2 GiB (e.g. 8 lights at 4096 x 4096, or 2 at 8192 x 8192).
 constexpr uint64_t kMaxKeptStencilCounts = uint64_t(1) << 27;
 
+// The per-light visibility values a render may keep for --dump visibility: each a float while
+// counting, again when finished and once more as an EXR channel, so 2^26 of them take about
+// 1 GiB at most (e.g. 4 lights at 4096 x 4096, 64 at 1024 x 1024).
+constexpr uint64_t kMaxVisibilityValues = uint64_t(1) << 26;
+
 bool wants(const std::vector<std::string>& dumps, const char* what) {
   return std::find(dumps.begin(), dumps.end(), what) != dumps.end();
 }
 
 void writeOutput(const FrameResult& frame, const std::string& out, const ExrExtras& extras,
-                 const OutputMetadata& metadata) {
-  ensureParentDirectory(out);
+                 const OutputMetadata& metadata, std::vector<std::string>& madeFolders) {
+  ensureParentDirectory(out, &madeFolders);
   const std::string ext = lowercase(std::filesystem::path(out).extension().string());
   if (ext == ".exr") writeExr(frame.framebuffer, out, extras, metadata);
   else writeImage(frame.framebuffer, out, metadata);
@@ -120,7 +125,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_option("scene", args.scene.scene, "Scene file (YAML); omitted: the built-in room");
   render->add_option("-o,--output", args.outputs,
                      "Output image, .png (8-bit colour) or .exr (R,G,B,A float, Z float, stencil uint32); "
-                     "repeatable. Default: out/<scene>.png");
+                     "repeatable; missing folders are made. Default: out/<scene>.png");
   render->add_option("--method", args.method, methodHelp());
   render->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D camera.near=0.001")
       ->take_all()
@@ -136,8 +141,9 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_option("--dump", args.dumps,
                      "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (per light: false-colour "
                      "PNG with legend, and stencil.L<i> EXR channels), 'depth' (grey PNG), 'shadowmap' (per light: grey PNG "
-                     "and EXR with the Z channel)")
-      ->check(CLI::IsMember({"passes", "stencil", "depth", "shadowmap"}));
+                     "and EXR with the Z channel), 'visibility' (per scene light: grey PNG, 1 lit white, 0 in shadow "
+                     "black, and visibility.L<i> EXR channels, for every method)")
+      ->check(CLI::IsMember({"passes", "stencil", "depth", "shadowmap", "visibility"}));
   render->add_option("--dump-region", args.dumpRegion, "x,y,w,h: print the stencil counts of that region per light "
                                                        "(row 0 is the bottom)");
   render->add_option("--view", args.view,
@@ -170,6 +176,10 @@ int runRender(const RenderArgs& args) {
       return kBadInput;
     }
     anyExr = anyExr || ext == ".exr";
+    if (const std::string problem = outputFolderProblem(out); !problem.empty()) {
+      std::cerr << out << ": " << problem << '\n';
+      return kBadInput;
+    }
     if (!args.scene.scene.empty() && sameFile(out, args.scene.scene)) {
       std::cerr << out << ": refusing to write the output over the scene file itself\n";
       return kBadInput;
@@ -222,10 +232,22 @@ int runRender(const RenderArgs& args) {
       return kBadInput;
     }
   }
+  options.keepVisibility = wants(args.dumps, "visibility");
+  if (options.keepVisibility) {
+    const std::optional<uint64_t> values = checkedMul(
+        checkedMul(uint64_t(scene->width), uint64_t(scene->height)).value_or(UINT64_MAX), uint64_t(scene->lights.size()));
+    if (!values || *values > kMaxVisibilityValues) {
+      std::cerr << "--dump visibility: " << scene->lights.size() << " lights x " << scene->width << "x"
+                << scene->height << " pixels is more than the limit of " << kMaxVisibilityValues
+                << " (2^26) visibility values; render fewer lights (-D lights.NAME=off) or a smaller image\n";
+      return kBadInput;
+    }
+  }
   options.keepShadowMaps = wants(args.dumps, "shadowmap");
   if (args.view == "volumes") options.volumeView = VolumeViewMode::FrontBack;
   if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
   std::vector<std::string> passFiles;
+  std::vector<std::string> madeFolders;  // by this render: taken away again if it fails
   std::string grids;  // --dump-region's text, one grid per light, printed after the render
   size_t stencilPasses = 0;
   try {
@@ -245,7 +267,7 @@ int runRender(const RenderArgs& args) {
           StencilViewOptions view;
           view.signedCounts = true;  // wrapping ops store -1 as 255
           const std::string path = siblingPath(outputs.front(), "stencil-" + light);
-          ensureParentDirectory(path);
+          ensureParentDirectory(path, &madeFolders);
           writeStencilPng(fb.stencil(), fb.width(), fb.height(), path, view, showing("stencil " + light));
           passFiles.push_back(path);
         }
@@ -256,7 +278,7 @@ int runRender(const RenderArgs& args) {
       }
       if (!dumpPasses) return;
       const std::string path = siblingPath(outputs.front(), "pass-" + pass);
-      ensureParentDirectory(path);
+      ensureParentDirectory(path, &madeFolders);
       // A volume pass changes only the stencil buffer: its picture is the stencil counts.
       if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
         StencilViewOptions view;
@@ -272,9 +294,16 @@ int runRender(const RenderArgs& args) {
     const FrameResult frame = renderFrame(*scene, options);
     if (!args.quiet)
       for (const std::string& warning : frame.warnings) std::cerr << "warning: " << warning << '\n';
-    const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
+    ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
+    OutputMetadata frameMetadata = showing("frame");
+    // visibility.L<i>: light i of the scene, named in the header (shadowref:visibility.L<i>).
+    for (size_t i = 0; i < frame.visibility.size(); ++i) {
+      const std::string channel = "visibility.L" + std::to_string(i);
+      extras.channels.push_back(NamedChannel::floatChannel(channel, frame.visibility[i]));
+      frameMetadata.extra.emplace_back("shadowref:" + channel, scene->lights[i].name);
+    }
     for (const std::string& out : outputs) {
-      writeOutput(frame, out, extras, showing("frame"));
+      writeOutput(frame, out, extras, frameMetadata, madeFolders);
       if (!args.quiet) std::cerr << "wrote " << out << '\n';
     }
     if (dumpStencil && stencilPasses == 0 && !args.quiet)
@@ -284,6 +313,14 @@ int runRender(const RenderArgs& args) {
       for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(frame.framebuffer.depthCodec().decode(frame.framebuffer.depthCodes()[i]));
       const std::string path = siblingPath(outputs.front(), "depth");
       writeGreyPng(depth, scene->width, scene->height, path, 0.0f, 1.0f, showing("depth"));
+      passFiles.push_back(path);
+    }
+    for (size_t i = 0; i < frame.visibility.size(); ++i) {
+      const std::string light = "L" + std::to_string(i);
+      const std::string path = siblingPath(outputs.front(), "visibility-" + light);
+      OutputMetadata m = showing("visibility " + light + " '" + scene->lights[i].name + "'");
+      m.extra.emplace_back("shadowref:light", scene->lights[i].name);
+      writeGreyPng(frame.visibility[i], scene->width, scene->height, path, 0.0f, 1.0f, m);
       passFiles.push_back(path);
     }
     for (size_t i = 0; i < frame.shadowMaps.size(); ++i) {
@@ -306,6 +343,7 @@ int runRender(const RenderArgs& args) {
       for (const std::string& p : passFiles) std::cerr << "wrote " << p << '\n';
     if (args.stats) printStats(frame);
   } catch (const std::exception& e) {
+    removeEmptyFolders(madeFolders);
     std::cerr << "render: " << e.what() << '\n';
     return kFailed;
   }

@@ -26,6 +26,7 @@ std::vector<std::pair<std::string, std::string>> metadataAttributes(const Output
   if (!overrides.empty()) attributes.emplace_back("shadowref:overrides", overrides);
   attributes.emplace_back("shadowref:threads", std::to_string(metadata.threads));
   attributes.emplace_back("shadowref:pipeline", metadata.pipeline);
+  for (const auto& attribute : metadata.extra) attributes.push_back(attribute);
   return attributes;
 }
 

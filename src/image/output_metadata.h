@@ -19,6 +19,9 @@ struct OutputMetadata {
   std::vector<std::string> overrides;  // the -D arguments, in order
   int threads = 0;                     // the worker threads the frame ran on (the pixels do not depend on it)
   std::string pipeline;                // "fast": the optimised renderer
+  // Further attributes, written after the others in this order: e.g. "shadowref:visibility.L0"
+  // naming the light of an EXR's visibility.L0 channel.
+  std::vector<std::pair<std::string, std::string>> extra;
 
   bool empty() const { return software.empty(); }
 };
@@ -26,7 +29,7 @@ struct OutputMetadata {
 // The attributes to write, in this order (none for empty metadata):
 //   Software, ImageDescription (one line for viewers that show only the standard fields),
 //   shadowref:content, shadowref:method, shadowref:scene, shadowref:scene-sha1 (when known),
-//   shadowref:overrides (when there are some), shadowref:threads, shadowref:pipeline.
+//   shadowref:overrides (when there are some), shadowref:threads, shadowref:pipeline, then `extra`.
 // All values are strings. shadowref:overrides is the -D arguments as shell words,
 // "-D image.width=64 -D 'ambient=[0.9, 0.9, 0.9]'".
 std::vector<std::pair<std::string, std::string>> metadataAttributes(const OutputMetadata& metadata);

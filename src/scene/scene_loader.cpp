@@ -121,6 +121,27 @@ void mergeInto(YamlValue& base, const YamlValue& overlay) {
   }
 }
 
+// -D meshes.NAME.KEY...=value: merged into the source of the file's mesh NAME.
+void mergeMeshOverride(const Override& o, YamlValue& meshes) {
+  if (o.path.size() < 3)
+    failAt(o.path[0].at, "-D meshes needs a mesh and a key, e.g. meshes.ball.sphere.slices=64 or meshes.house.normals=flat");
+  const Override::Segment& which = o.path[1];
+  std::vector<std::string_view> names;
+  if (meshes.isMap())
+    for (YamlEntry& e : meshes.entries) {
+      if (e.key == which.text) {
+        mergeInto(e.value, o.asTree(2));
+        return;
+      }
+      names.push_back(e.key);
+    }
+  std::string message = "meshes." + which.text + ": no mesh named '" + which.text +
+                        "' in the file's meshes section (only those can be overridden)";
+  std::string_view near = closestName(which.text, names);
+  if (!near.empty()) message += "; did you mean '" + std::string(near) + "'?";
+  failAt(which.at, message);
+}
+
 Scene buildScene(const YamlValue& root, const std::string& displayName, const std::string& baseDir,
                  const LoadOptions& options) {
   Provenance where{SourceLocation{displayName, 0, 0}};
@@ -155,16 +176,24 @@ Scene buildScene(const YamlValue& root, const std::string& displayName, const st
   if (const YamlValue* v = root.find("shadow")) applyShadow(*v, scene.shadow, where);
   if (const YamlValue* v = root.find("limits")) applyLimits(*v, limits, where);
   // limits.* overrides take effect now: reading the nodes already counts them against the budget.
+  Removals removed;
   for (const Override& o : overrides)
-    if (o.path[0].text == "limits") applyOverride(o, scene, limits, where);
+    if (o.path[0].text == "limits") applyOverride(o, scene, limits, where, removed);
   readMaterials(section("materials"), scene, where);
   readLights(section("lights"), scene, where);
-  readMeshes(section("meshes"), scene, baseDir, where);
+  // meshes.* overrides change the file's mesh sources before they are read (a mesh is made from
+  // its source once; what is read is checked as the file's own keys are).
+  YamlValue meshes = section("meshes");
+  for (const Override& o : overrides)
+    if (o.path[0].text == "meshes") mergeMeshOverride(o, meshes);
+  readMeshes(meshes, scene, baseDir, where);
   readNodes(section("nodes"), scene, limits, where);
 
   for (const Override& o : overrides)
-    if (o.path[0].text != "generator" && o.path[0].text != "limits") applyOverride(o, scene, limits, where);
+    if (o.path[0].text != "generator" && o.path[0].text != "limits" && o.path[0].text != "meshes")
+      applyOverride(o, scene, limits, where, removed);
   validateScene(scene, limits, where);
+  removeOverridden(removed, scene);
   return scene;
 }
 

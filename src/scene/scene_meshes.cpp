@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "scene/adjacency.h"
 #include "scene/mesh_import.h"
 #include "scene/primitives.h"
 
@@ -134,11 +135,25 @@ const std::vector<std::string_view> kMeshKinds{"box", "sphere", "cylinder", "con
 
 std::shared_ptr<Mesh> readMeshSource(const YamlValue& source, const std::string& name, const std::string& path,
                                      const std::string& baseDir, Provenance& where) {
-  if (!source.isMap() || source.entries.size() != 1)
+  auto oneSource = [&]() -> const YamlEntry* {
+    if (!source.isMap()) return nullptr;
+    const YamlEntry* found = nullptr;
+    for (const YamlEntry& e : source.entries)
+      if (e.key != "normals" && e.key != "crease_angle") {
+        if (found) return nullptr;
+        found = &e;
+      }
+    return found;
+  };
+  std::vector<std::string_view> allowed = kMeshKinds;
+  allowed.insert(allowed.end(), {"normals", "crease_angle"});
+  if (source.isMap()) checkKeys(source, path, allowed);
+  const YamlEntry* found = oneSource();
+  if (!found)
     failAt(source.at, path + ": expected one of " + joinNames(kMeshKinds) +
-                          " with its parameters, e.g. 'box: {size: [1, 1, 1]}' or 'obj: meshes/house.obj'");
-  checkKeys(source, path, kMeshKinds);
-  const YamlEntry& entry = source.entries.front();
+                          " with its parameters, e.g. 'box: {size: [1, 1, 1]}' or 'obj: meshes/house.obj'" +
+                          " (and optionally normals: flat or smooth, crease_angle)");
+  const YamlEntry& entry = *found;
   const std::string kindPath = path + "." + entry.key;
   where.record(kindPath, entry.value.at);
   Mesh mesh = (entry.key == "obj" || entry.key == "gltf")
@@ -146,6 +161,21 @@ std::shared_ptr<Mesh> readMeshSource(const YamlValue& source, const std::string&
                   : readPrimitive(entry.key, entry.value, kindPath, where);
   if (mesh.triangles.empty())
     failAt(entry.value.at, kindPath + ": mesh '" + name + "' has no triangles (after dropping degenerate ones)");
+  // normals: flat (each triangle its face normal) or smooth (crease normals: smooth across edges
+  // whose faces meet within crease_angle degrees, default 40); without it, a primitive keeps its
+  // own normals and a file its normals (crease normals within 40 degrees where it has none).
+  const YamlValue* normals = source.find("normals");
+  const YamlValue* crease = source.find("crease_angle");
+  static const EnumNames<bool> kNormalNames{{"flat", false}, {"smooth", true}};
+  const bool smooth = normals && readEnum(*normals, path + ".normals", kNormalNames);
+  if (crease && !smooth)
+    failAt(crease->at, path + ".crease_angle: applies only with 'normals: smooth'" +
+                           std::string(normals ? "" : " (add it: without it a file's own normals are used)"));
+  if (normals) {
+    if (smooth) computeCreaseNormals(mesh, crease ? readNumberInRange(*crease, path + ".crease_angle", 0.0, 180.0) : 40.0);
+    else computeFlatNormals(mesh);
+    buildAdjacency(mesh);
+  }
   mesh.name = name;
   return std::make_shared<Mesh>(std::move(mesh));
 }

@@ -270,4 +270,26 @@ glm::dmat4 readTransform(const YamlValue& map, const std::string& path) {
   return compose(d, path);
 }
 
+void applyNodeOverride(const YamlValue& map, Node& node, const std::string& path, const Scene& scene, Provenance& where) {
+  const NameIndex index(scene);
+  NodeDraft d;
+  d.scene = &scene;
+  d.index = &index;
+  d.path = path;
+  std::vector<Field<NodeDraft>> overridable;
+  for (const Field<NodeDraft>& f : nodeFields())
+    if (f.key == "cast_shadows" || f.key == "material" || f.key == "mesh" || f.key == "shadow_proxy")
+      overridable.push_back(f);
+  // The node's own fields, without its children: only the four keys above can change.
+  d.node.mesh = node.mesh;
+  d.node.material = node.material;
+  d.node.castShadows = node.castShadows;
+  d.node.shadowProxy = node.shadowProxy;
+  applyFields(map, path, overridable, d, where);
+  node.mesh = d.node.mesh;
+  node.material = d.node.material;
+  node.castShadows = d.node.castShadows;
+  node.shadowProxy = d.node.shadowProxy;
+}
+
 }  // namespace shadowref

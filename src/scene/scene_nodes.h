@@ -22,6 +22,11 @@ namespace shadowref {
 std::vector<Node> readNodeList(const YamlValue& list, size_t firstIndex, const Scene& scene,
                                const ResourceLimits& limits, Provenance& where);
 
+// -D nodes.PATH.KEY=value on a node of the finished scene: the keys cast_shadows, material, mesh
+// and shadow_proxy of `map`, checked as in a file (names looked up in `scene`). Another key is an
+// error that lists these; the transform and the children stay as the file made them.
+void applyNodeOverride(const YamlValue& map, Node& node, const std::string& path, const Scene& scene, Provenance& where);
+
 // The transform keys alone, for tests and overrides: local = T · R · S (scale first, then rotate,
 // then translate), or `matrix`. Throws for a singular result.
 glm::dmat4 readTransform(const YamlValue& map, const std::string& path);

@@ -33,10 +33,22 @@ struct Override {
 // segment, or a value that is not YAML.
 std::vector<Override> parseOverrides(const std::vector<std::string>& texts);
 
-// Applies one override (not generator.*) to the scene, or to the scene's resource limits
-// (limits.*). Throws SceneError for an unknown path, a missing light or material, a key with more
-// than kYamlMaxDepth names, or a value of the wrong type.
-void applyOverride(const Override& o, Scene& scene, ResourceLimits& limits, Provenance& where);
+// What the overrides removed (`-D lights.NAME=off`, `-D nodes.PATH=off`). They are dropped only
+// after the scene is validated (removeOverridden), so that while the overrides are applied every
+// light and node keeps the number it has in the file: `lights.1` means the same light before and
+// after `lights.0=off`.
+struct Removals {
+  std::vector<size_t> lights;              // indices into scene.lights
+  std::vector<std::vector<size_t>> nodes;  // a node as child indices from the roots: {root, child, ...}
+};
+
+// Applies one override (not generator.*, meshes.*) to the scene, or to the scene's resource
+// limits (limits.*). Throws SceneError for an unknown path, a missing light, node or material, a
+// key with more than kYamlMaxDepth names, or a value of the wrong type.
+void applyOverride(const Override& o, Scene& scene, ResourceLimits& limits, Provenance& where, Removals& removed);
+
+// Drops what the overrides removed from the validated scene.
+void removeOverridden(const Removals& removed, Scene& scene);
 
 // The top-level names an override may start with.
 const std::vector<std::string_view>& overridableSections();

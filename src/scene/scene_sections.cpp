@@ -221,6 +221,29 @@ void applyCamera(const YamlValue& map, Camera& camera, Provenance& where) {
 }
 void applyLight(const YamlValue& map, Light& light, const std::string& path, Provenance& where) {
   applyFields(map, path, lightFields(), light, where);
+  // A key the light's type does not read is an error, as an unknown key is: a directional light
+  // has no position (it is at infinity), a point light no direction, and only a spot light a
+  // cone. Checked against the type the light has after the map (the map may set it after the
+  // key), for the keys this map wrote.
+  if (!map.isMap()) return;
+  for (const YamlEntry& e : map.entries) {
+    const bool applies = e.key == "position"    ? light.type != LightType::Directional
+                         : e.key == "direction" ? light.type != LightType::Point
+                         : (e.key == "spot_cutoff" || e.key == "spot_exponent") ? light.type == LightType::Spot
+                                                                                : true;
+    if (applies) continue;
+    std::vector<std::string_view> allowed;
+    for (const Field<Light>& f : lightFields()) {
+      const std::string_view k = f.key;
+      if ((k == "position" && light.type == LightType::Directional) || (k == "direction" && light.type == LightType::Point) ||
+          ((k == "spot_cutoff" || k == "spot_exponent") && light.type != LightType::Spot))
+        continue;
+      allowed.push_back(k);
+    }
+    const std::string type(enumName(lightTypeNames(), light.type));
+    failAt(e.keyAt, "key '" + e.key + "' does not apply to the " + type + " light " + path + " (keys of a " + type +
+                        " light: " + joinNames(allowed) + ")");
+  }
 }
 void applyMaterial(const YamlValue& map, Material& material, const std::string& path, Provenance& where) {
   applyFields(map, path, materialFields(), material, where);

@@ -9,6 +9,7 @@
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
 #include "shadow/technique_registry.h"
+#include "shadow/visibility.h"
 
 namespace shadowref {
 
@@ -47,6 +48,11 @@ void renderUnshadowed(const Scene& scene, const FrameOptions& options, FrameResu
     drawLit(pipeline, state, scene, view, prepared, scene.lights, true);
   });
   if (options.onPass) options.onPass("01-lit", pipeline.framebuffer());
+  if (options.keepVisibility) {
+    VisibilityCounts counts(scene.lights.size(), pipeline.framebuffer().pixelCount());
+    for (size_t l = 0; l < scene.lights.size(); ++l) counts.addLit(l);
+    result.visibility = counts.finish();
+  }
 }
 
 }  // namespace
@@ -75,6 +81,8 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
   if (options.observer) pipeline->watchPixel(options.watchX, options.watchY, options.observer);
   technique->render(scene, options, result, *pipeline);
   pipeline->endPass();  // before the result leaves: the framebuffer is complete
+  if (options.keepVisibility && result.visibility.size() != scene.lights.size())
+    throw std::runtime_error("the shadow method " + std::string(technique->name) + " computes no per-light visibility");
   result.stats += pipeline->stats();
   return result;
 }

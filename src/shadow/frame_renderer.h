@@ -49,6 +49,8 @@ struct FrameOptions {
   bool keepStencil = false;
   // Keep the shadow maps of the first frame (--dump shadowmap).
   bool keepShadowMaps = false;
+  // Compute each scene light's visibility (shadow/visibility.h) into FrameResult::visibility.
+  bool keepVisibility = false;
   VolumeViewMode volumeView = VolumeViewMode::None;
 };
 
@@ -72,6 +74,9 @@ struct FrameResult {
   // What the user should know about the scene, once each (`render` prints them on stderr): e.g.
   // a shadow-casting mesh the shadow volumes cannot take as it is written (volume_casting.h).
   std::vector<std::string> warnings;
+  // With FrameOptions::keepVisibility: per light of the scene (scene.lights' order, soft lights
+  // not expanded) the visibility of every pixel in framebuffer order (shadow/visibility.h).
+  std::vector<std::vector<float>> visibility;
 };
 
 // "01-ambient", "02-stencil-L0", ...: the next pass name of a frame, numbered in order so that
@@ -81,7 +86,7 @@ std::string numberedPass(int& counter, const std::string& what);
 // Renders with the technique options.method or else scene.shadow.method names. An unknown name is
 // a SceneError at the scene's shadow.method (or std::invalid_argument for options.method), each
 // listing the names there are; std::runtime_error for a
-// technique or pipeline this build cannot render with.
+// technique or pipeline this build cannot render with, or asked for visibility it does not give.
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options = {});
 
 }  // namespace shadowref

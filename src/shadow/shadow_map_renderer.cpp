@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "gl/accumulation.h"
@@ -19,6 +20,7 @@
 #include "shadow/soft_lights.h"
 #include "shadow/technique.h"
 #include "shadow/trapezoid_overlay.h"
+#include "shadow/visibility.h"
 
 namespace shadowref {
 
@@ -287,6 +289,11 @@ void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions
   const std::vector<std::vector<Light>> frames = accumulationFrames(scene.lights);
   const bool accumulating = frames.size() > 1;
   int passCounter = 0;
+  // Visibility: each frame's compare results, k² comparisons a light and pixel with k × k PCF.
+  std::optional<VisibilityCounts> visibility;
+  if (options.keepVisibility) visibility.emplace(scene.lights.size(), pipeline.framebuffer().pixelCount());
+  const int pcfHalf = scene.shadow.pcf > 1 ? scene.shadow.pcf / 2 : 0;
+  const int comparisons = (2 * pcfHalf + 1) * (2 * pcfHalf + 1);
   for (size_t k = 0; k < frames.size(); ++k) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::unique_ptr<LightShadow>> shadows;
@@ -310,11 +317,19 @@ void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions
     if (!drawCameraPass(pipeline, state, scene, view, prepared, shadows) && k == 0)
       result.notes.push_back("Gouraud materials lit per pixel: more than " +
                              std::to_string(ShadowMappedGouraudShader::kMaxLights) + " shadow-mapped lights");
+    if (visibility) {
+      std::vector<const LightShadow*> active;
+      for (const auto& sh : shadows) active.push_back(sh.get());
+      const std::vector<std::vector<float>> v =
+          shadowMapVisibility(pipeline, state, scene.width, scene.height, scene.depthFormat, prepared, active);
+      for (size_t l = 0; l < v.size(); ++l) visibility->addFractions(l, v[l], comparisons);
+    }
     const std::string name = numberedPass(passCounter, accumulating ? "camera-" + std::to_string(k) : "camera");
     result.timings.push_back({name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mapsDone).count()});
     if (options.onPass) options.onPass(name, pipeline.framebuffer());
     if (accumulating) pipeline.accumulate(state, k == 0 ? AccumOp::Load : AccumOp::Accum, 1.0f / float(frames.size()));
   }
+  if (visibility) result.visibility = visibility->finish();
   if (accumulating) {
     pipeline.accumulate(state, AccumOp::Return, 1.0f);
     if (options.onPass) options.onPass(numberedPass(passCounter, "return"), pipeline.framebuffer());

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <numeric>
+#include <optional>
 
 #include "gl/clear.h"
 #include "gl/fragment_shader.h"
@@ -17,6 +18,7 @@
 #include "shadow/soft_lights.h"
 #include "shadow/stencil_counting.h"
 #include "shadow/technique.h"
+#include "shadow/visibility.h"
 #include "shadow/volume_casting.h"
 
 namespace shadowref {
@@ -246,8 +248,14 @@ void renderShadowVolumes(const Scene& scene, VolumeCounting method, const FrameO
   const RenderState base = volumeBaseState(view);
 
   std::vector<Light> lights;  // soft lights expanded ([Kuhn 2016, §3.6])
-  for (const Light& light : scene.lights)
-    for (const Light& l : expandSoftLight(light)) lights.push_back(l);
+  std::vector<size_t> owner;  // the scene light each came from
+  for (size_t s = 0; s < scene.lights.size(); ++s)
+    for (const Light& l : expandSoftLight(scene.lights[s])) {
+      lights.push_back(l);
+      owner.push_back(s);
+    }
+  std::optional<VisibilityCounts> visibility;
+  if (options.keepVisibility) visibility.emplace(scene.lights.size(), pipeline.framebuffer().pixelCount());
 
   const bool darken = scene.shadow.darkenComposite;
   pass(darken ? "lit" : "ambient", [&] {
@@ -285,11 +293,15 @@ void renderShadowVolumes(const Scene& scene, VolumeCounting method, const FrameO
       result.stencilPerLight.push_back(pipeline.framebuffer().stencil());
       result.stencilLightNames.push_back(suffix);
     }
+    // Visibility of a volume method: the count this light's volumes left, 0 = lit.
+    if (visibility) visibility->addStencil(owner[i], pipeline.framebuffer().stencil());
     pass((darken ? "darken-" : "lit-") + suffix, [&] {
       if (darken) drawAmbient(pipeline, composite, scene, view, prepared, DrawKind::Darken);
       else drawLit(pipeline, composite, scene, view, prepared, std::span<const Light>(&light, 1), false);
     });
   }
+
+  if (visibility) result.visibility = visibility->finish();
 
   if (options.volumeView != VolumeViewMode::None) {
     pass(options.volumeView == VolumeViewMode::Overlay ? "volumes-overlay" : "volumes", [&] {

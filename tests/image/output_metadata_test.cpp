@@ -133,3 +133,21 @@ TEST_CASE("EXR and PNG carry the metadata, read back by OpenImageIO, with unchan
   CHECK(bytesOf(dir.file("a.exr")) == bytesOf(dir.file("b.exr")));
   CHECK(bytesOf(dir.file("a.png")) == bytesOf(dir.file("b.png")));
 }
+
+TEST_CASE("extra attributes follow the others in order and read back from EXR and PNG", "[image][metadata]") {
+  TempDir dir("metadata-extra");
+  OutputMetadata m = sampleMetadata();
+  m.extra = {{"shadowref:visibility.L0", "sun"}, {"shadowref:visibility.L1", "the lamp's"}};
+  const auto attributes = metadataAttributes(m);
+  REQUIRE(attributes.size() == 11);
+  CHECK(attributes[8] == std::pair<std::string, std::string>{"shadowref:pipeline", "fast"});
+  CHECK(attributes[9] == std::pair<std::string, std::string>{"shadowref:visibility.L0", "sun"});
+  CHECK(attributes[10] == std::pair<std::string, std::string>{"shadowref:visibility.L1", "the lamp's"});
+  for (const char* name : {"v.exr", "v.png"}) {
+    INFO(name);
+    writeImage(smallFramebuffer(), dir.file(name), m);
+    const OIIO::ImageSpec spec = readSpec(dir.file(name));
+    CHECK(spec.get_string_attribute("shadowref:visibility.L0") == "sun");
+    CHECK(spec.get_string_attribute("shadowref:visibility.L1") == "the lamp's");
+  }
+}

@@ -244,8 +244,11 @@ TEST_CASE("a -D override with an unknown key is reported on the command line", "
   CHECK_THAT(yamlErrorOf(kBoxScene, o), Contains("did you mean 'near'?"));
   o.overrides = {"shadw.method=zfail"};
   CHECK_THAT(yamlErrorOf(kBoxScene, o), StartsWith("<command line>:1:1: -D shadw: cannot override 'shadw'"));
+  // A mesh's source can be overridden (tests/scene/override_nodes_test.cpp), its kind checked as in a file.
   o.overrides = {"meshes.box.box.size=[1, 1, 1]"};
-  CHECK_THAT(yamlErrorOf(kBoxScene, o), StartsWith("<command line>:1:1: -D meshes: cannot override 'meshes'"));
+  CHECK(yamlErrorOf(kBoxScene, o) == "(no error)");
+  o.overrides = {"meshes.box.box.radius=1"};
+  CHECK_THAT(yamlErrorOf(kBoxScene, o), StartsWith("<command line>:1:16: unknown key 'radius' in meshes.box.box"));
   o.overrides = {"lights.3.range=5"};
   CHECK_THAT(yamlErrorOf(kBoxScene, o), StartsWith("<command line>:1:8: lights.3: the scene has 0 light(s)"));
   o.overrides = {"camera.eye.x=5"};
