@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gl/clear.h"
+#include "shadow/caster_fit.h"
 #include "shadow/draw_tag.h"
 #include "shadow/focus_body.h"
 #include "shadow/focused_trapezoid.h"
@@ -207,7 +208,20 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
     }
     return ls;
   }
-  ls->views[0] = shadowLightView(light, bounds);
+  if (light.type == LightType::Directional && !trapezoidal && scene.shadow.fit == MapFit::Casters) {
+    // The orthographic map fitted to the casters that can shadow what the camera sees
+    // (caster_fit.h); a visible point outside it is shadowed by nothing and looked up as lit.
+    // TSM keeps the scene box's light view: its trapezoid focuses the map itself.
+    const Camera& camera = scene.camera;
+    CasterFit fit = fitDirectionalToCasters(light, instances, bounds,
+                                            frustumCorners(camera, view.aspect, fitFarToBounds(camera, bounds)),
+                                            camera.eye, scene.shadow.mapSize, scene.shadow.pcf);
+    ls->views[0] = fit.view;
+    ls->fittedToCasters = fit.fitted;
+    ls->fittedCasters = std::move(fit.casters);
+  } else {
+    ls->views[0] = shadowLightView(light, bounds);
+  }
   const LightView& lv = ls->views[0];
   glm::dmat4 projection = lv.projection;
   glm::dmat4 T = textureMatrix(lv);
@@ -228,6 +242,7 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
   ls->textures[0] = renderDepthMap(scene, instances, light, lv.view, projection, frame, stats,
                                    clipToFront ? lv.nearPlane : 0.0, ls->focusedDepth);
   configureLookup(ls->lookup, ls->textures[0], T, scene.shadow);
+  ls->lookup.outsideLit = ls->fittedToCasters;
   return ls;
 }
 

@@ -1,6 +1,7 @@
 // One light's shadow maps and their lookup ([Hempe 2004, §3.1, §4.1, §5.1]): step 1 of a
 // shadow-mapped frame, and the shadow test step 2 applies to each fragment's world position.
-//   - directional light: one orthographic map fitted to the scene's bounding box;
+//   - directional light: one orthographic map fitted to the casters that can shadow what the
+//     camera sees (caster_fit.h), a point outside it lit; for TSM fitted to the scene's box;
 //   - spot light: one perspective map along its axis (light_view.h);
 //   - point light (beyond the documents): six perspective cube-face maps;
 //   - trapezoidal (directional and spot): the light's clip space warped by N_T
@@ -38,6 +39,8 @@ struct LightShadow {
   glm::dvec3 depthAnchor{0.0};           // with trapezoidal: where the view axis enters the body
   glm::dmat4 warp{1.0};                  // with trapezoidal: focusedDepthWarp(N_T, ...), or N_T when affine
   bool focusedDepth = false;             // warp is focusedDepthWarp (map pass with depth clamp)
+  bool fittedToCasters = false;          // directional, standard: the map of caster_fit.h
+  std::vector<size_t> fittedCasters;     // with fittedToCasters: the casters it was fitted to
 
   LightShadow() = default;
   LightShadow(const LightShadow&) = delete;  // the lookups point into `textures`

@@ -331,6 +331,7 @@ constexpr TechniqueSetting kMapSettings[] = {
     {"back_faces_only", "true or false"},
     {"pcf", "1 to 15"},
     {"compare_fail", "0 to 1"},
+    {"fit", "casters or scene"},
 };
 
 // TSM reads the same, and the focus region ([Hempe 2004, §4.1]).
@@ -358,6 +359,10 @@ std::string describeMapSettings(const ShadowSettings& s) {
          number(s.compareFail);
 }
 
+std::string describeStandardSettings(const ShadowSettings& s) {
+  return describeMapSettings(s) + ", fit " + (s.fit == MapFit::Casters ? "casters" : "scene");
+}
+
 std::string describeTrapezoidalSettings(const ShadowSettings& s) {
   return describeMapSettings(s) + ", focus region " + number(s.focusRegion);
 }
@@ -375,7 +380,7 @@ extern const ShadowTechnique kShadowMapTechnique{
     .settings = kMapSettings,
     .countsInStencil = false,
     .render = renderMapsOfKind<ShadowMapKind::Standard>,
-    .describe = describeMapSettings,
+    .describe = describeStandardSettings,
 };
 
 extern const ShadowTechnique kTrapezoidalTechnique{

@@ -98,6 +98,7 @@ void checkScene(const std::string& file) {
 
 SCENE_FRAMES("city.yaml")
 SCENE_FRAMES("city16.yaml")
+SCENE_FRAMES("city16_sun.yaml")
 SCENE_FRAMES("directional.yaml")
 SCENE_FRAMES("minimal.yaml")
 SCENE_FRAMES("obj_example.yaml")
@@ -110,7 +111,7 @@ SCENE_FRAMES("two_lights.yaml")
 
 TEST_CASE("the scene grid names every scene in scenes/", "[differential][scenes]") {
   // A scene added to scenes/ must get its SCENE_FRAMES line above.
-  const std::set<std::string> covered = {"city.yaml",   "city16.yaml",   "directional.yaml", "minimal.yaml",
+  const std::set<std::string> covered = {"city.yaml",   "city16.yaml",   "city16_sun.yaml", "directional.yaml", "minimal.yaml",
                                          "obj_example.yaml", "outdoor.yaml", "overflow.yaml",   "pumpkins.yaml",
                                          "room.yaml",   "spot.yaml",     "two_lights.yaml"};
   std::set<std::string> present;

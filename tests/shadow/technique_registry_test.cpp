@@ -131,7 +131,7 @@ TEST_CASE("`info` describes the settings the scene's technique reads", "[shadow]
     CHECK(describeShadowSettings(s) == "silhouette kuhn, two-sided stencil, wrapping stencil ops");
   }
   s.method = "shadowmap";
-  CHECK(describeShadowSettings(s) == "map 1024 x 1024, offset 1.1 / 4, bias 0, pcf 1, compare fail 0.4");
+  CHECK(describeShadowSettings(s) == "map 1024 x 1024, offset 1.1 / 4, bias 0, pcf 1, compare fail 0.4, fit casters");
   s.method = "tsm";
   s.mapSize = 256;
   s.backFacesOnly = true;
