@@ -84,6 +84,8 @@ void appendClippedTriangles(const Mesh& mesh, const HalfSpace& front, const Vert
 
 }  // namespace
 
+double pcfOffsetFactor(double offsetFactor, int pcf) { return offsetFactor * double(pcfKernelWidth(pcf)); }
+
 glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const std::vector<glm::dvec3>& body,
                             const glm::dvec3& anchor) {
   const glm::dmat4 lightClip = light.projection * light.view;
@@ -140,7 +142,7 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   // [Hempe 2004, §3.2]: either polygon offset or only the back faces in the map.
   state.cull = scene.shadow.backFacesOnly ? CullMode::Front : CullMode::None;
   state.polygonOffset = {scene.shadow.offsetFactor != 0.0 || scene.shadow.offsetUnits != 0.0,
-                         scene.shadow.offsetFactor, scene.shadow.offsetUnits};
+                         pcfOffsetFactor(scene.shadow.offsetFactor, scene.shadow.pcf), scene.shadow.offsetUnits};
   // A focused depth range (focusedDepthWarp) puts casters between the light and the focus body
   // before the near plane: clamped to depth 0 they still shadow everything behind them.
   state.depthClamp = depthClamp;
