@@ -74,6 +74,10 @@ struct Light {
 
 enum class SilhouetteAlgorithm : uint8_t { Kuhn, YenKwoon, Kilgard, Lengyel };
 
+// What a directional light's standard map is fitted to: the casters that can shadow what the
+// camera sees (src/shadow/caster_fit.h), or the whole scene's box ([Hempe 2004, §5.1.2]).
+enum class MapFit : uint8_t { Casters, Scene };
+
 // Parameters of the shadow algorithms; each technique reads the fields its registry entry lists.
 struct ShadowSettings {
   // The shadow technique, by the name it is registered under (src/shadow/technique_registry.h).
@@ -93,6 +97,7 @@ struct ShadowSettings {
   double constantBias = 0.0;
   bool backFacesOnly = false;
   int pcf = 1;                    // k x k percentage-closer filtering; 1 = nearest
+  MapFit fit = MapFit::Casters;   // directional light, standard map
   double compareFail = 0.4;       // [Hempe 2004, §5.1.2]
   double focusRegion = 0.4;       // TSM 80 % rule ([Hempe 2004, §4.1])
 };

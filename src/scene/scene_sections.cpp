@@ -31,6 +31,11 @@ const EnumNames<SilhouetteAlgorithm>& silhouetteNames() {
   return names;
 }
 
+const EnumNames<MapFit>& mapFitNames() {
+  static const EnumNames<MapFit> names{{"casters", MapFit::Casters}, {"scene", MapFit::Scene}};
+  return names;
+}
+
 const EnumNames<DepthFormat>& depthFormatNames() {
   static const EnumNames<DepthFormat> names{{"float32", DepthFormat::Float32}, {"unorm24", DepthFormat::Unorm24}};
   return names;
@@ -175,6 +180,7 @@ const std::vector<Field<ShadowSettings>>& shadowFields() {
          s.backFacesOnly = readBool(v, p);
        }},
       {"pcf", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.pcf = readInt(v, p, 1, 15); }},
+      {"fit", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.fit = readEnum(v, p, mapFitNames()); }},
       {"compare_fail", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
          s.compareFail = readNumberInRange(v, p, 0.0, 1.0);
        }},

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gl/clear.h"
+#include "shadow/caster_fit.h"
 #include "shadow/draw_tag.h"
 #include "shadow/focus_body.h"
 #include "shadow/focused_trapezoid.h"
@@ -83,6 +84,8 @@ void appendClippedTriangles(const Mesh& mesh, const HalfSpace& front, const Vert
 
 }  // namespace
 
+double pcfOffsetFactor(double offsetFactor, int pcf) { return offsetFactor * double(pcfKernelWidth(pcf)); }
+
 glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const std::vector<glm::dvec3>& body,
                             const glm::dvec3& anchor) {
   const glm::dmat4 lightClip = light.projection * light.view;
@@ -139,7 +142,7 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   // [Hempe 2004, §3.2]: either polygon offset or only the back faces in the map.
   state.cull = scene.shadow.backFacesOnly ? CullMode::Front : CullMode::None;
   state.polygonOffset = {scene.shadow.offsetFactor != 0.0 || scene.shadow.offsetUnits != 0.0,
-                         scene.shadow.offsetFactor, scene.shadow.offsetUnits};
+                         pcfOffsetFactor(scene.shadow.offsetFactor, scene.shadow.pcf), scene.shadow.offsetUnits};
   // A focused depth range (focusedDepthWarp) puts casters between the light and the focus body
   // before the near plane: clamped to depth 0 they still shadow everything behind them.
   state.depthClamp = depthClamp;
@@ -207,7 +210,20 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
     }
     return ls;
   }
-  ls->views[0] = shadowLightView(light, bounds);
+  if (light.type == LightType::Directional && !trapezoidal && scene.shadow.fit == MapFit::Casters) {
+    // The orthographic map fitted to the casters that can shadow what the camera sees
+    // (caster_fit.h); a visible point outside it is shadowed by nothing and looked up as lit.
+    // TSM keeps the scene box's light view: its trapezoid focuses the map itself.
+    const Camera& camera = scene.camera;
+    CasterFit fit = fitDirectionalToCasters(light, instances, bounds,
+                                            frustumCorners(camera, view.aspect, fitFarToBounds(camera, bounds)),
+                                            camera.eye, scene.shadow.mapSize, scene.shadow.pcf);
+    ls->views[0] = fit.view;
+    ls->fittedToCasters = fit.fitted;
+    ls->fittedCasters = std::move(fit.casters);
+  } else {
+    ls->views[0] = shadowLightView(light, bounds);
+  }
   const LightView& lv = ls->views[0];
   glm::dmat4 projection = lv.projection;
   glm::dmat4 T = textureMatrix(lv);
@@ -228,6 +244,7 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
   ls->textures[0] = renderDepthMap(scene, instances, light, lv.view, projection, frame, stats,
                                    clipToFront ? lv.nearPlane : 0.0, ls->focusedDepth);
   configureLookup(ls->lookup, ls->textures[0], T, scene.shadow);
+  ls->lookup.outsideLit = ls->fittedToCasters;
   return ls;
 }
 

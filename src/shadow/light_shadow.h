@@ -1,6 +1,7 @@
 // One light's shadow maps and their lookup ([Hempe 2004, §3.1, §4.1, §5.1]): step 1 of a
 // shadow-mapped frame, and the shadow test step 2 applies to each fragment's world position.
-//   - directional light: one orthographic map fitted to the scene's bounding box;
+//   - directional light: one orthographic map fitted to the casters that can shadow what the
+//     camera sees (caster_fit.h), a point outside it lit; for TSM fitted to the scene's box;
 //   - spot light: one perspective map along its axis (light_view.h);
 //   - point light (beyond the documents): six perspective cube-face maps;
 //   - trapezoidal (directional and spot): the light's clip space warped by N_T
@@ -38,6 +39,8 @@ struct LightShadow {
   glm::dvec3 depthAnchor{0.0};           // with trapezoidal: where the view axis enters the body
   glm::dmat4 warp{1.0};                  // with trapezoidal: focusedDepthWarp(N_T, ...), or N_T when affine
   bool focusedDepth = false;             // warp is focusedDepthWarp (map pass with depth clamp)
+  bool fittedToCasters = false;          // directional, standard: the map of caster_fit.h
+  std::vector<size_t> fittedCasters;     // with fittedToCasters: the casters it was fitted to
 
   LightShadow() = default;
   LightShadow(const LightShadow&) = delete;  // the lookups point into `textures`
@@ -76,6 +79,21 @@ inline constexpr double kFocusedDepthMargin = 1e-3;
 inline constexpr double kMinFocusedDepthHalfRange = 1e-6;
 glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const std::vector<glm::dvec3>& body,
                             const glm::dvec3& anchor);
+
+// The polygon offset factor the map pass uses for a k × k PCF lookup: `offsetFactor` × the
+// kernel's width w (w = 2 · ⌊k/2⌋ + 1, the taps samplePcf reads). Why: a receiver is its own
+// caster in the map, a plane of depth slopes g_x, g_y per texel. The nearest tap's centre lies at
+// most half a texel from the point in each axis, the outer taps ⌊k/2⌋ texels further, so the
+// plane's depth there is at most (|g_x| + |g_y|) · w/2 ≤ m · w nearer the light than the point,
+// m = max(|g_x|, |g_y|), the slope term of glPolygonOffset ([GL 2.1, §3.5.5]). The factor that
+// keeps nearest sampling (w = 1) free of acne, 1.1 by default, keeps every tap of the kernel free
+// of it when multiplied by w; a fixed offset leaves the outer taps of a sloped receiver shadowing
+// it (the moiré of [Isidoro 2006], who tilts the comparison by the receiver's plane instead).
+// The cost: w times the offset also lifts shadows w times as far off their casters' feet
+// (peter-panning). The units term covers rounding, not the slope, and is left alone; so is a
+// constant bias.
+inline int pcfKernelWidth(int pcf) { return pcf > 1 ? 2 * (pcf / 2) + 1 : 1; }
+double pcfOffsetFactor(double offsetFactor, int pcf);
 
 // Renders `light`'s map(s) with the scene's ShadowSettings and sets up the lookup. `trapezoidal`
 // selects TSM for directional and spot lights (point lights always get cube maps). Each map is

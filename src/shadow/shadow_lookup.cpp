@@ -12,9 +12,15 @@ glm::dvec4 withConstantBias(const glm::dvec4& strq, double constantBias) {
   return {strq.x, strq.y, strq.z - constantBias * strq.w, strq.w};
 }
 
+namespace {
+// Outside the map's square (a NaN is not outside: the sampler handles it as before).
+bool outsideMap(double s, double t) { return s < 0.0 || s > 1.0 || t < 0.0 || t > 1.0; }
+}  // namespace
+
 double ShadowLookup::factor(const glm::dvec3& worldPosition) const {
   const glm::dvec4 strq = withConstantBias(shadowCoordinates(textureMatrix, worldPosition), constantBias);
   if (!(strq.w > 0.0)) return 1.0;
+  if (outsideLit && outsideMap(strq.x / strq.w, strq.y / strq.w)) return 1.0;
   return pcf > 1 ? sampler.samplePcf(strq, pcf) : sampler.sample(strq);
 }
 
@@ -50,7 +56,7 @@ void ShadowLookup::factors(const double* x, const double* y, const double* z, in
     }
     if (k > 0) sampler.sampleDivided(divided[0], divided[1], divided[2], k, out);
     for (int i = 0; i < k; ++i)
-      if (behind[i]) out[i] = 1.0;
+      if (behind[i] || (outsideLit && outsideMap(divided[0][i], divided[1][i]))) out[i] = 1.0;
   }
   for (; k < count; ++k) out[k] = factor({x[k], y[k], z[k]});
 }

@@ -28,9 +28,12 @@ struct ShadowLookup {
   DepthCompareSampler sampler;  // texture, compare func (LEQUAL), compare-fail value (0.4)
   int pcf = 1;                  // k x k percentage-closer filtering [Reeves et al. 1987]; 1 = nearest ([Hempe 2004])
   double constantBias = 0.0;
+  // A map fitted to the casters (caster_fit.h): a point whose s/q or t/q lies outside [0, 1] is
+  // shadowed by no caster and is lit (1), as a border of depth 1 with GL_CLAMP_TO_BORDER gives.
+  bool outsideLit = false;
 
   // 1 where lit, failValue where shadowed, between them at PCF edges. Outside the map the
-  // sampler clamps to the edge texel, as GL_CLAMP_TO_EDGE does. Behind a perspective light
+  // sampler clamps to the edge texel, as GL_CLAMP_TO_EDGE does (unless outsideLit). Behind a perspective light
   // (q ≤ 0) the projection is meaningless; such points lie outside a spot cone, so they are not
   // shadowed by the map (1): the spot's own cone term leaves them dark.
   double factor(const glm::dvec3& worldPosition) const;

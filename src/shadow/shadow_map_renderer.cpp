@@ -359,6 +359,9 @@ constexpr std::array<TechniqueSetting, N + 1> extended(const std::array<Techniqu
   return out;
 }
 
+// The standard map also chooses what its light view is fitted to; TSM keeps its own construction.
+constexpr std::array kStandardSettings = extended(kMapSettings, {"fit", "casters or scene"});
+
 // TSM reads the same, and the focus region ([Hempe 2004, §4.1]).
 constexpr std::array kTrapezoidalSettings = extended(kMapSettings, {"focus_region", "between 0 and 1 exclusive"});
 
@@ -375,6 +378,10 @@ std::string describeMapSettings(const ShadowSettings& s) {
          number(s.compareFail);
 }
 
+std::string describeStandardSettings(const ShadowSettings& s) {
+  return describeMapSettings(s) + ", fit " + (s.fit == MapFit::Casters ? "casters" : "scene");
+}
+
 std::string describeTrapezoidalSettings(const ShadowSettings& s) {
   return describeMapSettings(s) + ", focus region " + number(s.focusRegion);
 }
@@ -389,10 +396,10 @@ void renderMapsOfKind(const Scene& scene, const FrameOptions& options, FrameResu
 extern const ShadowTechnique kShadowMapTechnique{
     .name = "shadowmap",
     .summary = "shadow maps: a depth map per light, compared per fragment [Williams 1978], [Hempe 2004, §3.1]",
-    .settings = kMapSettings,
+    .settings = kStandardSettings,
     .countsInStencil = false,
     .render = renderMapsOfKind<ShadowMapKind::Standard>,
-    .describe = describeMapSettings,
+    .describe = describeStandardSettings,
 };
 
 extern const ShadowTechnique kTrapezoidalTechnique{

@@ -2,8 +2,9 @@
 // shadow_map_renderer.cpp and light_shadow.cpp against hand-computed shadows.
 //
 // The scene: an 8 × 8 ground slab (top at y = 0) and a 2 × 1 × 2 box hovering at y = 1 … 2. Under
-// a directional light straight down the map is orthographic over the scene box x, z ∈ [−4, 4]:
-// with N = 256 a texel is 1/32 wide, and the footprint |x|, |z| < 1 is exactly 64 texels.
+// a directional light straight down the map fitted to the scene box (`fit: scene`) is orthographic
+// over x, z ∈ [−4, 4]: with N = 256 a texel is 1/32 wide, and the footprint |x|, |z| < 1 is exactly
+// 64 texels. Fitted to the casters (the default) it covers the box's footprint and a margin.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -254,7 +255,7 @@ TEST_CASE("shadow map frame: TSM equals standard mapping when the trapezoid is t
   // the degenerate case of [Hempe 2004, Listing 10e], whose bounding rectangle is the light's whole
   // view.
   const std::string camera = "{eye: [0, 30, 0], target: [0, 0, 0], up: [0, 0, -1], fov: 40, near: 1, far: 60}";
-  const Scene standard = makeScene(kSun, "{method: shadowmap, map_size: 256}", camera);
+  const Scene standard = makeScene(kSun, "{method: shadowmap, map_size: 256, fit: scene}", camera);
   const Scene trapezoidal = makeScene(kSun, "{method: tsm, map_size: 256}", camera);
   const auto tsm = shadowOf(trapezoidal, true);
   REQUIRE(tsm->trapezoidal);
@@ -306,7 +307,7 @@ TEST_CASE("shadow map frame: polygon offset, constant bias and back faces only e
 
 TEST_CASE("shadow map frame: 3x3 PCF blends the compare results at the shadow's edge and leaves the inside alone",
           "[shadowmap-frame]") {
-  const auto pcf = shadowOf(makeScene(kSun, "{method: shadowmap, map_size: 256, pcf: 3}"));
+  const auto pcf = shadowOf(makeScene(kSun, "{method: shadowmap, map_size: 256, pcf: 3, fit: scene}"));
   const double texel = 8.0 / 256;
   CHECK(pcf->factor({0.0, 0.0, 0.0}) == Approx(kFail).epsilon(1e-12));  // the mean of nine 0.4s
   CHECK(pcf->factor({2.5, 0.0, 2.5}) == 1.0);

@@ -114,6 +114,8 @@ TEST_CASE("golden: the shadow-map goldens show shadows (some pixels darker than 
     size_t darker = 0;
     for (size_t i = 0; i < shadowed.framebuffer.color().size(); ++i)
       darker += shadowed.framebuffer.color()[i].g < lit.framebuffer.color()[i].g;
-    CHECK(darker > 100);
+    // 85 for sm-standard: its map fitted to the casters has no acne on the tilted block, which the
+    // map over the scene box had and counted.
+    CHECK(darker > 50);
   }
 }

@@ -115,7 +115,7 @@ TEST_CASE("the keys a technique reads are keys of the scene's shadow section", "
     }
 }
 
-TEST_CASE("TSM reads the shadow map's settings, in their order, and the focus region", "[shadow][registry]") {
+TEST_CASE("TSM reads the shadow map's settings but its fit, in their order, and the focus region", "[shadow][registry]") {
   auto keys = [](const char* name) {
     const ShadowTechnique* t = findTechnique(name);
     REQUIRE(t != nullptr);
@@ -123,10 +123,12 @@ TEST_CASE("TSM reads the shadow map's settings, in their order, and the focus re
     for (const TechniqueSetting& s : t->settings) out.emplace_back(s.key);
     return out;
   };
-  const std::vector<std::string> map = keys("shadowmap");
-  CHECK(map == std::vector<std::string>{"map_size", "offset_factor", "offset_units", "bias", "back_faces_only", "pcf",
-                                        "compare_fail"});
-  std::vector<std::string> tsm = map;
+  const std::vector<std::string> common = {"map_size", "offset_factor", "offset_units", "bias", "back_faces_only",
+                                           "pcf", "compare_fail"};
+  std::vector<std::string> map = common;
+  map.push_back("fit");
+  CHECK(keys("shadowmap") == map);
+  std::vector<std::string> tsm = common;
   tsm.push_back("focus_region");
   CHECK(keys("tsm") == tsm);
 }
@@ -140,7 +142,7 @@ TEST_CASE("`info` describes the settings the scene's technique reads", "[shadow]
     CHECK(describeShadowSettings(s) == "silhouette kuhn, two-sided stencil, wrapping stencil ops");
   }
   s.method = "shadowmap";
-  CHECK(describeShadowSettings(s) == "map 1024 x 1024, offset 1.1 / 4, bias 0, pcf 1, compare fail 0.4");
+  CHECK(describeShadowSettings(s) == "map 1024 x 1024, offset 1.1 / 4, bias 0, pcf 1, compare fail 0.4, fit casters");
   s.method = "tsm";
   s.mapSize = 256;
   s.backFacesOnly = true;
