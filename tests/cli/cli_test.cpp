@@ -384,7 +384,7 @@ TEST_CASE("render with the reference and the fast pipeline writes the same pixel
 TEST_CASE("render warns once per open, non-manifold, inconsistently wound or inside-out mesh, naming it and what "
           "it does; a closed scene gets no warning", "[cli]") {
   const std::string png = (scratch() / "irregular.png").string();
-  const Run r = run("render scenes/irregular.yaml -D image.width=64 -D image.height=48 -o '" + png + "'");
+  const CliRun r = runShadowref("render scenes/irregular.yaml -D image.width=64 -D image.height=48 -o '" + png + "'");
   INFO(r.err);
   CHECK(r.status == 0);
   auto lines = [&](const std::string& needle) {
@@ -402,18 +402,18 @@ TEST_CASE("render warns once per open, non-manifold, inconsistently wound or ins
   CHECK(lines("warning: mesh 'flipped_face_cube' is inconsistently wound (4 edges whose two triangles run them the "
               "same way)") == 1);
   // The tent under two lights: one warning, not one per light.
-  const Run tent = run("render scenes/tent.yaml -D image.width=64 -D image.height=48 -o '" + png + "'");
+  const CliRun tent = runShadowref("render scenes/tent.yaml -D image.width=64 -D image.height=48 -o '" + png + "'");
   CHECK(tent.status == 0);
   CHECK(tent.err.find("warning: mesh 'tent' is open (5 edges with one triangle)") != std::string::npos);
   CHECK(tent.err.find("warning: ") == tent.err.rfind("warning: "));
   // --quiet prints nothing but errors; a scene of closed outward meshes has nothing to warn about.
-  CHECK(run("render scenes/tent.yaml -D image.width=64 -D image.height=48 --quiet -o '" + png + "'").err.empty());
-  CHECK(run("render scenes/minimal.yaml -D image.width=64 -D image.height=48 -o '" + png + "'").err.find("warning") ==
+  CHECK(runShadowref("render scenes/tent.yaml -D image.width=64 -D image.height=48 --quiet -o '" + png + "'").err.empty());
+  CHECK(runShadowref("render scenes/minimal.yaml -D image.width=64 -D image.height=48 -o '" + png + "'").err.find("warning") ==
         std::string::npos);
 }
 
 TEST_CASE("info reports an inside-out closed mesh by the sign of the volume it encloses", "[cli]") {
-  const Run r = run("info scenes/irregular.yaml");
+  const CliRun r = runShadowref("info scenes/irregular.yaml");
   INFO(r.err);
   CHECK(r.status == 0);
   CHECK(r.out.find("inside_out_cube: 12 triangles, 8 welded vertices, 18 edges, closed (0 open, 0 non-manifold "
@@ -425,7 +425,7 @@ TEST_CASE("info reports an inside-out closed mesh by the sign of the volume it e
   CHECK(r.out.find("triangle: 1 triangles, 3 welded vertices, 3 edges, open (3 open, 0 non-manifold edges), bounds") !=
         std::string::npos);
   // A unit cube wound the right way encloses +1 and is not called inside out.
-  const Run minimal = run("info scenes/minimal.yaml");
+  const CliRun minimal = runShadowref("info scenes/minimal.yaml");
   CHECK(minimal.out.find("inside out") == std::string::npos);
   CHECK(minimal.out.find("encloses volume ") != std::string::npos);
 }

@@ -27,11 +27,11 @@ std::string readFile(const fs::path& p) {
   return s.str();
 }
 
-// The text files of src/, support/, tests/ and bench/ (not bench/results/: recorded runs, kept as
-// printed).
+// The text files of src/, support/, tests/, bench/ and the scenes users start from (not
+// bench/results/: recorded runs, kept as printed).
 std::vector<fs::path> sourceFiles() {
   std::vector<fs::path> out;
-  for (const char* dir : {"src", "support", "tests", "bench"}) {
+  for (const char* dir : {"src", "support", "tests", "bench", "scenes"}) {
     for (auto it = fs::recursive_directory_iterator(kRoot / dir); it != fs::recursive_directory_iterator(); ++it) {
       if (it->is_directory() && it->path() == kRoot / "bench" / "results") {
         it.disable_recursion_pending();
@@ -39,7 +39,8 @@ std::vector<fs::path> sourceFiles() {
       }
       const std::string ext = it->path().extension().string();
       if (it->is_regular_file() &&
-          (ext == ".h" || ext == ".cpp" || ext == ".md" || ext == ".sh" || it->path().filename() == "CMakeLists.txt"))
+          (ext == ".h" || ext == ".cpp" || ext == ".md" || ext == ".sh" || ext == ".yaml" ||
+           it->path().filename() == "CMakeLists.txt"))
         out.push_back(it->path());
     }
   }
