@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake ninja-build pkg-config ccache
-  libglm-dev libopenimageio-dev openimageio-tools
+  libglm-dev libpng-dev libopenexr-dev nettle-dev libopenimageio-dev openimageio-tools
   catch2 libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libosmesa6-dev clang libclang-rt-14-dev gnuplot-nox
 )

@@ -270,6 +270,8 @@ int runRender(const RenderArgs& args) {
       passFiles.push_back(path);
     };
     const FrameResult frame = renderFrame(*scene, options);
+    // The EXR's ZIP blocks compress on as many threads as a fast frame renders on (same bytes).
+    if (anyExr || options.keepShadowMaps) setImageWriterThreads(pipelineThreads(PipelineKind::Fast, options.threads));
     const ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);
     for (const std::string& out : outputs) {
       writeOutput(frame, out, extras, showing("frame"));
