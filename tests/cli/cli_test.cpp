@@ -400,3 +400,32 @@ TEST_CASE("render with the reference and the fast pipeline writes the same pixel
   CHECK(bad.err.find("--pipeline") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "x.exr"));
 }
+
+TEST_CASE("-D is taken before or after the scene by every subcommand that reads one", "[cli]") {
+  const fs::path dir = freshDir("d-order");
+  for (const bool before : {true, false}) {
+    INFO((before ? "-D before the scene" : "-D after the scene"));
+    const auto with = [&](const std::string& command, const std::string& d, const std::string& rest = "") {
+      const std::string scene = "scenes/minimal.yaml";
+      return run(command + " " + (before ? d + " " + scene : scene + " " + d) + " " + rest);
+    };
+    // info prints the size the override set; check refuses an override the scene rejects.
+    const Run info = with("info", "-D image.width=37 -D image.height=29");
+    INFO(info.err);
+    CHECK(info.status == 0);
+    CHECK(info.out.find("image: 37 x 29") != std::string::npos);
+    CHECK(with("check", "-D image.width=37").status == 0);
+    const Run bad = with("check", "-D shadow.method=nosuchmethod");
+    CHECK(bad.status == 2);
+    CHECK(bad.err.find("nosuchmethod") != std::string::npos);
+    const Run bench = with("bench", "-D image.width=24 -D image.height=16", "--frames 1 --csv");
+    INFO(bench.err);
+    CHECK(bench.status == 0);
+    CHECK(bench.out.find(",24,16,1,") != std::string::npos);
+    const std::string png = (dir / (before ? "before.png" : "after.png")).string();
+    const Run render = with("render", "-D image.width=24 -D image.height=16", "--quiet -o '" + png + "'");
+    INFO(render.err);
+    CHECK(render.status == 0);
+    CHECK(fs::exists(png));
+  }
+}
