@@ -100,7 +100,8 @@ class ThreadPool {
 // pool serves one run at a time from one thread; renderers of one thread never run at once.
 ThreadPool* threadPoolForThisThread(int threads);
 
-// The number of threads "0 = all cores" means.
+// The number of threads "0 = all cores" means: the processors in this process's affinity mask
+// (sched_getaffinity), e.g. 1 under `taskset -c 0`; the machine's count if the mask is unknown.
 int defaultThreadCount();
 
 }  // namespace shadowref

@@ -429,3 +429,28 @@ TEST_CASE("-D is taken before or after the scene by every subcommand that reads 
     CHECK(fs::exists(png));
   }
 }
+
+TEST_CASE("under taskset -c 0 a render uses one thread by default, as its metadata says", "[cli][threads]") {
+  if (std::system("command -v taskset >/dev/null 2>&1") != 0) {
+    WARN("taskset (util-linux) is not installed");
+    return;
+  }
+  const fs::path dir = freshDir("taskset");
+  const std::string png = (dir / "one.png").string();
+  // The CLI's own process under the mask: taskset runs it on CPU 0 only.
+  const std::string cli = std::string("'") + SHADOWREF_CLI + "'";
+  const std::string cmd = std::string("cd '") + SHADOWREF_SOURCE_DIR + "' && taskset -c 0 " + cli +
+                          " render scenes/minimal.yaml -D image.width=32 -D image.height=24 --quiet -o '" + png + "'";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  // The PNG's tEXt chunk "shadowref:threads" holds the thread count the frame ran on: a chunk is
+  // a 4-byte big-endian length, "tEXt", then keyword NUL value.
+  const std::string bytes = slurp(png);
+  const std::string key = std::string("tEXtshadowref:threads") + '\0';
+  const size_t at = bytes.find(key);
+  REQUIRE(at != std::string::npos);
+  REQUIRE(at >= 4);
+  uint32_t length = 0;
+  for (size_t i = at - 4; i < at; ++i) length = length << 8 | uint8_t(bytes[i]);
+  REQUIRE(length > key.size() - 5);
+  CHECK(bytes.substr(at + key.size(), length - (key.size() - 4)) == "1");
+}
