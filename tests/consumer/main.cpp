@@ -2,7 +2,8 @@
 // tests/consumer/run.sh compares with values the command line and README.md give:
 //   stencil ROW: the z-pass and z-fail counts of row 173, x 676..687, of the pumpkin scene
 //     (README: camera inside a volume, so z-pass is one short: -1 lit, 0 shadow; z-fail 0 and 1);
-//   history: the last two fragments of pixel 400,220 of the room with z-fail;
+//   history: of pixel 400,220 of the room with z-fail, the last fragment that changed the stencil
+//     and the last fragment (README: why the pixel is dark);
 //   error: the message for a bad override.
 #include <cstdio>
 #include <string>
@@ -28,11 +29,13 @@ int main() {
     watch.historyX = 400;
     watch.historyY = 220;
     const api::Frame room = api::render(api::Scene::fromFile("scenes/room.yaml"), watch);
-    for (size_t i = room.history.size() >= 2 ? room.history.size() - 2 : 0; i < room.history.size(); ++i) {
-      const api::FragmentRecord& f = room.history[i];
-      std::printf("history draw %llu %s stencil %d -> %d\n", static_cast<unsigned long long>(f.draw), f.what.c_str(),
-                  f.stencilBefore, f.stencilAfter);
-    }
+    const api::FragmentRecord* changed = nullptr;
+    for (const api::FragmentRecord& f : room.history)
+      if (f.stencilBefore != f.stencilAfter) changed = &f;
+    for (const api::FragmentRecord* f : {changed, room.history.empty() ? nullptr : &room.history.back()})
+      if (f)
+        std::printf("history draw %llu %s stencil %d -> %d\n", static_cast<unsigned long long>(f->draw), f->what.c_str(),
+                    f->stencilBefore, f->stencilAfter);
     try {
       api::Scene::fromFile("scenes/minimal.yaml", {"image.width=banana"});
       std::printf("error none\n");
