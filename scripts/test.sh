@@ -21,7 +21,7 @@ if [ "${1:-}" = "--sanitize" ]; then
 fi
 if [ "${CI:-}" = "true" ]; then args+=(-DSHADOWREF_WERROR=ON); fi
 
-bash scripts/setup.sh "$build_dir" "${args[@]}"
+bash scripts/setup.sh --role test "$build_dir" "${args[@]}"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
