@@ -401,7 +401,7 @@ TEST_CASE("render with the reference and the fast pipeline writes the same pixel
   CHECK_FALSE(fs::exists(dir / "x.exr"));
 }
 
-TEST_CASE("-D is taken before or after the scene by every subcommand that reads one", "[cli]") {
+TEST_CASE("every subcommand that reads a scene takes -D before or after it", "[cli]") {
   const fs::path dir = freshDir("d-order");
   for (const bool before : {true, false}) {
     INFO((before ? "-D before the scene" : "-D after the scene"));
