@@ -47,10 +47,11 @@ extern "C" void pngWrite(png_structp png, png_bytep data, png_size_t size) {
   try {
     writeAllAt(sink->fd, data, size, sink->offset);
     sink->offset += size;
+    return;
   } catch (const std::exception& e) {
     sink->failure = e.what();
-    png_error(png, "write failed");
   }
+  png_error(png, "write failed");  // a longjmp: only once the exception is finished with
 }
 extern "C" void pngFlush(png_structp) {}
 extern "C" void pngError(png_structp png, png_const_charp message) {
