@@ -46,7 +46,10 @@ for h in build_info.h build_revision.h; do
 done
 sanitizers=fuzzer-no-link,address,undefined,float-cast-overflow
 flags=(-std=c++20 -g -O1 -fno-omit-frame-pointer -fsanitize=$sanitizers -fno-sanitize-recover=all
-       -ffp-contract=off -fno-fast-math -Wno-psabi -DGLM_ENABLE_EXPERIMENTAL -Isrc -I. -I"$out/gen")
+       -ffp-contract=off -fno-fast-math -Wno-psabi -DGLM_ENABLE_EXPERIMENTAL -Isrc -I. -I"$out/gen"
+       $(pkg-config --cflags OpenEXR)
+       # The image reader (OpenImageIO) linked in, not loaded as a module: it is fuzzed too.
+       -DSHADOWREF_IMAGE_READER_LINKED)
 
 # The libraries (folders of src/) each target needs, in link order.
 libs_of() {
@@ -71,10 +74,14 @@ consider() {  # source object
     stale+=("$1" "$2")
   fi
 }
-# A library's sources: its folder of src/, or for the pipeline the three folders CMake's
-# shadowref_pipeline is made of.
+# A library's sources: its folder of src/, for the pipeline the three folders CMake's
+# shadowref_pipeline is made of, for image also the reader module's folder.
 sources_of() {
-  if [ "$1" = pipeline ]; then echo src/gl/*.cpp src/exec/*.cpp src/memory/*.cpp; else echo src/"$1"/*.cpp; fi
+  case $1 in
+    pipeline) echo src/gl/*.cpp src/exec/*.cpp src/memory/*.cpp ;;
+    image) echo src/image/*.cpp src/image/oiio/*.cpp ;;
+    *) echo src/"$1"/*.cpp ;;
+  esac
 }
 for l in "${!needed[@]}"; do
   for src in $(sources_of "$l"); do
@@ -104,7 +111,7 @@ for t in "${targets[@]}"; do
   libs=()
   for l in $(libs_of "$t"); do libs+=("$out/lib/lib$l.a"); done
   extra=(-lyaml-cpp)
-  case $t in image_compare | cli) extra+=($(pkg-config --libs OpenImageIO)) ;; esac
+  case $t in image_compare | cli) extra+=($(pkg-config --libs OpenImageIO libpng OpenEXR nettle)) ;; esac
   "$CXX" -fsanitize=fuzzer,$sanitizers "$out/obj/fuzz_${t}_fuzz.o" "${libs[@]}" "${extra[@]}" -lpthread -o "$out/${t}_fuzz"
 done
 

@@ -22,10 +22,12 @@ void addBenchCommand(CLI::App& app, BenchArgs& args) {
   bench->add_option("scene", args.scene.scene, "Scene file (YAML); omitted: the built-in room");
   bench->add_option("--method", args.method, methodHelp());
   bench->add_option("--frames", args.frames, "Frames to time (default 5)")->check(wholeNumberIn(1, 10000));
-  bench->add_option("--threads", args.threads, "Worker threads (0: all cores)")->check(wholeNumberIn(0, 256));
+  bench->add_option("--threads", args.threads, "Worker threads (0: one per CPU this process may run on)")->check(wholeNumberIn(0, 256));
   bench->add_option("--pipeline", args.pipeline, "'fast' (default) or 'reference'")
       ->check(CLI::IsMember({"reference", "fast"}));
-  bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400");
+  bench->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D image.width=400")
+      ->take_all()
+      ->allow_extra_args(false);
   bench->add_flag("--csv", args.csv, "One CSV line: scene,method,threads,width,height,frames,median_ms");
 }
 

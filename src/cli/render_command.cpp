@@ -130,7 +130,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_option("-D", args.scene.overrides, "Override a scene value, e.g. -D camera.near=0.001")
       ->take_all()
       ->allow_extra_args(false);
-  render->add_option("--threads", args.threads, "Worker threads (0: all cores); the output does not depend on it")
+  render->add_option("--threads", args.threads, "Worker threads (0: one per CPU this process may run on, e.g. 1 under taskset -c 0); the output does not depend on it")
       ->check(wholeNumberIn(0, 256));
   render->add_option("--pipeline", args.pipeline,
                      "'fast' (default: the executor, threaded) or 'reference' (the readable GL pipeline, one thread); "
@@ -292,6 +292,8 @@ int runRender(const RenderArgs& args) {
       passFiles.push_back(path);
     };
     const FrameResult frame = renderFrame(*scene, options);
+    // The EXR's ZIP blocks compress on as many threads as a fast frame renders on (same bytes).
+    if (anyExr || options.keepShadowMaps) setImageWriterThreads(pipelineThreads(PipelineKind::Fast, options.threads));
     if (!args.quiet)
       for (const std::string& warning : frame.warnings) std::cerr << "warning: " << warning << '\n';
     ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);

@@ -11,13 +11,18 @@ namespace shadowref::cli {
 void addCheckCommand(CLI::App& app, SceneArgs& args) {
   CLI::App* check = app.add_subcommand("check", "Validate a scene file: exit 0, or the errors and exit 2");
   check->add_option("scene", args.scene, "Scene file (YAML)")->required();
-  check->add_option("-D", args.overrides, "Override a scene value, e.g. -D camera.near=0.001");
+  // One value per -D, so that a -D before the scene does not swallow it (as in render).
+  check->add_option("-D", args.overrides, "Override a scene value, e.g. -D camera.near=0.001")
+      ->take_all()
+      ->allow_extra_args(false);
 }
 
 void addInfoCommand(CLI::App& app, SceneArgs& args) {
   CLI::App* info = app.add_subcommand("info", "Print what a scene holds: nodes, meshes, edges, lights, bounds");
   info->add_option("scene", args.scene, "Scene file (YAML); omitted: the built-in room");
-  info->add_option("-D", args.overrides, "Override a scene value, e.g. -D camera.near=0.001");
+  info->add_option("-D", args.overrides, "Override a scene value, e.g. -D camera.near=0.001")
+      ->take_all()
+      ->allow_extra_args(false);
 }
 
 int runCheck(const SceneArgs& args) {

@@ -1,5 +1,7 @@
 #include "exec/thread_pool.h"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -45,6 +47,14 @@ std::shared_ptr<ThreadPool> makeThreadPool(int threads) {
 int ThreadPool::claimSize(int left, int threads) { return std::max(1, left / (kClaimShare * threads)); }
 
 int defaultThreadCount() {
+  // The processors this process may run on, not the machine's: under `taskset -c 0`, a cgroup's
+  // cpuset or a batch system's binding, more threads than those would only take turns on them.
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) == 0) {
+    const int n = CPU_COUNT(&allowed);
+    if (n > 0) return n;
+  }
   const unsigned n = std::thread::hardware_concurrency();
   return n == 0 ? 1 : int(n);
 }

@@ -106,7 +106,8 @@ class ThreadPool {
 // starts no threads per frame (a fresh worker also starts cold: its first bands begin late).
 std::shared_ptr<ThreadPool> makeThreadPool(int threads);
 
-// The number of threads "0 = all cores" means.
+// The number of threads "0 = all cores" means: the processors in this process's affinity mask
+// (sched_getaffinity), e.g. 1 under `taskset -c 0`; the machine's count if the mask is unknown.
 int defaultThreadCount();
 
 }  // namespace shadowref

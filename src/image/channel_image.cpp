@@ -8,10 +8,11 @@
 #include <memory>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
+#include <unistd.h>
 
+#include "image/channel_reader.h"
 #include "image/exr_header_check.h"
-#include "scene/checked_arithmetic.h"
 
 namespace shadowref {
 
@@ -22,71 +23,6 @@ int ChannelImage::channelIndex(const std::string& name) const {
 }
 
 namespace {
-
-bool isWideInteger(OIIO::TypeDesc t) {
-  return t.basetype == OIIO::TypeDesc::UINT32 || t.basetype == OIIO::TypeDesc::INT32;
-}
-
-// Reads one channel in the type that keeps its meaning (see readChannelImage).
-std::vector<double> readChannel(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, int c,
-                                const std::string& path) {
-  const size_t n = size_t(spec.width) * size_t(spec.height);
-  std::vector<double> values(n);
-  const OIIO::TypeDesc stored = spec.channelformat(c);
-  bool ok;
-  if (isWideInteger(stored)) {
-    // Read in the stored type itself: OpenImageIO converts between integer types by rescaling
-    // (255 in uint8 becomes 65535 in uint16), which would turn a count into something else.
-    std::vector<uint32_t> raw(n);
-    ok = in.read_image(0, 0, c, c + 1, stored, raw.data());
-    for (size_t i = 0; i < n; ++i)
-      values[i] = stored.basetype == OIIO::TypeDesc::INT32 ? double(int32_t(raw[i])) : double(raw[i]);
-  } else {
-    ok = in.read_image(0, 0, c, c + 1, OIIO::TypeDesc::DOUBLE, values.data());
-  }
-  if (!ok) throw std::runtime_error("cannot read '" + path + "': " + in.geterror());
-  return values;
-}
-
-// How many decoded bytes one byte of the file can hold at most, or 0 when the format or its
-// compression gives no useful bound (then only ReadLimits::maxValues applies). Deflate expands a
-// byte to at most 1032; EXR rle stores a run of at most 128 bytes in 2; pxr24 deflates 24 of each
-// 32 bits.
-uint64_t maxExpansion(const std::string& format, const std::string& compression) {
-  if (format == "png") return 1032;
-  if (format != "openexr") return 0;
-  if (compression == "none") return 1;
-  if (compression == "rle") return 128;
-  if (compression == "zip" || compression == "zips") return 1032;
-  if (compression == "pxr24") return 1376;
-  return 0;
-}
-
-// Refuses a header that declares more than the limits or the file can hold, before any allocation.
-void checkDeclaredSize(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, const std::string& path,
-                       const ReadLimits& limits) {
-  auto refuse = [&](const std::string& why) { throw std::runtime_error("cannot read '" + path + "': " + why); };
-  if (spec.depth > 1) refuse("volume images are not supported");
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    refuse("the header declares an empty image (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-           ", " + std::to_string(spec.nchannels) + " channels)");
-  const std::string declared = std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels with " +
-                               std::to_string(spec.nchannels) + " channels";
-  const std::optional<uint64_t> pixels = checkedMul(uint64_t(spec.width), uint64_t(spec.height));
-  const std::optional<uint64_t> values = pixels ? checkedMul(*pixels, uint64_t(spec.nchannels)) : std::nullopt;
-  if (!values || *values > limits.maxValues)
-    refuse("the header declares " + declared + ", more than the limit of " + std::to_string(limits.maxValues) +
-           " channel values");
-  const uint64_t expansion = maxExpansion(in.format_name(), spec.get_string_attribute("compression"));
-  std::error_code ec;
-  const uintmax_t fileBytes = std::filesystem::file_size(path, ec);
-  if (expansion == 0 || ec) return;
-  const uint64_t bytes = uint64_t(spec.image_bytes(true));  // in the file's own channel formats
-  const std::optional<uint64_t> capacity = checkedMul(uint64_t(fileBytes), expansion);
-  if (capacity && bytes > *capacity)
-    refuse("the header declares " + declared + " (" + std::to_string(bytes) + " bytes of pixels), more than its " +
-           std::to_string(fileBytes) + "-byte file can hold");
-}
 
 // Before any image library sees the file: a regular file of bounded size (a FIFO would block,
 // /dev/zero never end), and for an OpenEXR file every header attribute within the file's bytes.
@@ -106,23 +42,54 @@ void checkFile(const std::string& path, const ReadLimits& limits) {
   if (const std::string problem = checkExrHeaders(bytes); !problem.empty()) refuse(problem);
 }
 
+#ifndef SHADOWREF_IMAGE_READER_LINKED
+// Where the reader module may be, first found wins: beside an installed program (the path from
+// its bin/ folder to lib/shadowref/, fixed when configuring), then in the build tree.
+std::vector<std::string> readerModuleCandidates() {
+  std::vector<std::string> candidates;
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec)
+    candidates.push_back((exe.parent_path() / SHADOWREF_IMAGE_READER_FROM_BINDIR / "shadowref_image_reader.so").string());
+  candidates.push_back(std::string(SHADOWREF_IMAGE_READER_BUILD_DIR) + "/shadowref_image_reader.so");
+  return candidates;
+}
+
+ChannelReader loadReaderModule() {
+  std::string tried;
+  for (const std::string& candidate : readerModuleCandidates()) {
+    if (::access(candidate.c_str(), R_OK) != 0) {
+      tried += (tried.empty() ? "" : ", ") + candidate;
+      continue;
+    }
+    // Never closed: the reader's code and OpenImageIO stay for the rest of the process.
+    void* module = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!module) throw std::runtime_error(std::string("cannot load the image reader: ") + ::dlerror());
+    auto* entry = reinterpret_cast<ChannelReader (*)()>(::dlsym(module, "shadowref_channel_reader_v1"));
+    if (!entry) throw std::runtime_error("cannot load the image reader: " + candidate + " has no entry point");
+    return entry();
+  }
+  throw std::runtime_error("reading images needs the module shadowref_image_reader.so (OpenImageIO), not found at " +
+                           tried);
+}
+#endif
+
+// The reader, loaded once; a failed load is retried (and reported) on the next call.
+ChannelReader channelReader() {
+#ifdef SHADOWREF_IMAGE_READER_LINKED
+  return shadowref_channel_reader_v1();
+#else
+  static const ChannelReader reader = loadReaderModule();
+  return reader;
+#endif
+}
+
 }  // namespace
 
 ChannelImage readChannelImage(const std::string& path, const ReadLimits& limits) {
   checkFile(path, limits);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::runtime_error("cannot read '" + path + "': " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  checkDeclaredSize(*in, spec, path, limits);
-  ChannelImage image;
-  image.width = spec.width;
-  image.height = spec.height;
-  for (int c = 0; c < spec.nchannels; ++c) {
-    image.names.push_back(spec.channel_name(c));
-    image.data.push_back(readChannel(*in, spec, c, path));
-  }
-  in->close();
-  return image;
+  const ChannelReader read = channelReader();
+  return read(path, limits);
 }
 
 ChannelImage channelImageOf(const Framebuffer& fb, const ExrExtras& extras) {

@@ -1,14 +1,24 @@
 #include "image/image_writer.h"
 
 #include <algorithm>
-#include <bit>
 #include <cctype>
 #include <cmath>
 #include <set>
+#include <atomic>
+#include <csetjmp>
+#include <cstring>
 #include <stdexcept>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <png.h>
+#include <zlib.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 
 #include "image/atomic_write.h"
 
@@ -16,70 +26,124 @@ namespace shadowref {
 
 namespace {
 
-// OpenImageIO's output goes through this proxy straight to the temporary file's descriptor, so
-// every byte passes writeAllAt: a plugin that ignores a short write (the PNG one does) cannot hide
-// it, because the first failure is kept here and reported after close.
-class DescriptorSink final : public OIIO::Filesystem::IOProxy {
+// The encoders write straight into the temporary file's descriptor through writeAllAt, so a short
+// write (ENOSPC, EFBIG, ...) is an error with the system's reason, never a silently shorter file.
+// libpng and OpenEXR are called directly, not through OpenImageIO: a program linked against
+// Debian's OpenImageIO loads some 260 shared libraries before main (about half a second), while
+// these two need a handful. The files hold the same channels, types, names and attributes.
+
+// --- PNG (libpng) ---
+
+// libpng reports errors by longjmp; nothing with a destructor lives between the setjmp and the
+// calls that may jump (writePngRows keeps only plain pointers there).
+struct PngSink {
+  int fd = -1;
+  uint64_t offset = 0;
+  std::string failure;  // the first failed write or libpng's message; empty while all went well
+};
+
+extern "C" void pngWrite(png_structp png, png_bytep data, png_size_t size) {
+  auto* sink = static_cast<PngSink*>(png_get_io_ptr(png));
+  try {
+    writeAllAt(sink->fd, data, size, sink->offset);
+    sink->offset += size;
+    return;
+  } catch (const std::exception& e) {
+    sink->failure = e.what();
+  }
+  png_error(png, "write failed");  // a longjmp: only once the exception is finished with
+}
+extern "C" void pngFlush(png_structp) {}
+extern "C" void pngError(png_structp png, png_const_charp message) {
+  auto* sink = static_cast<PngSink*>(png_get_error_ptr(png));
+  if (sink->failure.empty()) sink->failure = message;
+  png_longjmp(png, 1);
+}
+extern "C" void pngWarning(png_structp, png_const_charp) {}
+
+// False when libpng failed (the reason in sink.failure). rows[r] is the r-th row from the top;
+// texts are tEXt chunks. The image data is deflated with zlib's run-length strategy after libpng's
+// adaptive row filters: much faster than zlib's default search for a somewhat larger file, and
+// still lossless (a PNG is for looking at; the EXR is the record). The bytes depend only on the
+// pixels and the texts.
+[[nodiscard]] bool writePngRows(PngSink& sink, int width, int height, int colorType, png_bytep* rows,
+                                png_text* texts, int textCount) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, pngError, pngWarning);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, info ? &info : nullptr);
+    return false;
+  }
+  png_set_write_fn(png, &sink, pngWrite, pngFlush);
+  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, colorType, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_compression_strategy(png, Z_RLE);
+  if (textCount > 0) png_set_text(png, info, texts, textCount);
+  png_write_info(png, info);
+  png_write_image(png, rows);
+  png_write_end(png, info);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+// PNG keywords for the provenance attributes, as OpenImageIO names them (and reads them back):
+// ImageDescription is PNG's "Description"; every other attribute keeps its name.
+std::string pngKeyword(const std::string& attribute) {
+  return attribute == "ImageDescription" ? "Description" : attribute;
+}
+
+void writePngFile(const TempFile& temp, const Image8& image, const OutputMetadata& metadata) {
+  const auto attributes = metadataAttributes(metadata);
+  std::vector<std::string> keys;
+  keys.reserve(attributes.size());
+  for (const auto& [name, value] : attributes) keys.push_back(pngKeyword(name));
+  std::vector<png_text> texts(attributes.size());
+  for (size_t i = 0; i < attributes.size(); ++i) {
+    texts[i].compression = PNG_TEXT_COMPRESSION_NONE;
+    texts[i].key = keys[i].data();
+    texts[i].text = const_cast<char*>(attributes[i].second.c_str());
+    texts[i].text_length = attributes[i].second.size();
+  }
+  std::vector<png_bytep> rows(size_t(image.height));
+  const size_t stride = size_t(image.width) * size_t(image.channels);
+  for (size_t r = 0; r < rows.size(); ++r) rows[r] = const_cast<png_bytep>(image.pixels.data() + r * stride);
+  const int colorType = image.channels == 1   ? PNG_COLOR_TYPE_GRAY
+                        : image.channels == 3 ? PNG_COLOR_TYPE_RGB
+                                              : PNG_COLOR_TYPE_RGB_ALPHA;
+  PngSink sink;
+  sink.fd = temp.fd;
+  if (!writePngRows(sink, image.width, image.height, colorType, rows.data(), texts.data(), int(texts.size())))
+    throw std::runtime_error(sink.failure.empty() ? "the PNG writer failed" : sink.failure);
+}
+
+// --- OpenEXR ---
+
+// OpenEXR's output stream over the temporary file's descriptor. The first failed write is kept:
+// OpenEXR writes the table of line offsets from OutputFile's destructor, which swallows errors,
+// so the writer checks failure() once the file is closed.
+class DescriptorStream final : public Imf::OStream {
  public:
-  explicit DescriptorSink(const TempFile& temp) : IOProxy(temp.path, Write), fd_(temp.fd) {}
-  const char* proxytype() const override { return "shadowref-descriptor"; }
-  size_t write(const void* buf, size_t size) override {
-    const size_t n = pwrite(buf, size, m_pos);
-    m_pos += int64_t(n);
-    return n;
-  }
-  size_t pwrite(const void* buf, size_t size, int64_t offset) override {
-    if (!failure_.empty() || offset < 0) return 0;
+  explicit DescriptorStream(const TempFile& temp) : Imf::OStream(temp.path.c_str()), fd_(temp.fd) {}
+  void write(const char c[], int n) override {
     try {
-      writeAllAt(fd_, buf, size, uint64_t(offset));
+      if (!failure_.empty()) throw std::runtime_error(failure_);
+      writeAllAt(fd_, c, size_t(n), position_);
     } catch (const std::exception& e) {
-      failure_ = e.what();
-      return 0;
+      if (failure_.empty()) failure_ = e.what();
+      throw;
     }
-    end_ = std::max(end_, uint64_t(offset) + size);
-    return size;
+    position_ += uint64_t(n);
   }
-  size_t read(void*, size_t) override { return 0; }
-  size_t pread(void*, size_t, int64_t) override { return 0; }
-  size_t size() const override { return size_t(end_); }
+  uint64_t tellp() override { return position_; }
+  void seekp(uint64_t pos) override { position_ = pos; }
   const std::string& failure() const { return failure_; }
 
  private:
   int fd_;
-  uint64_t end_ = 0;
-  std::string failure_;  // the first failed write, empty while every byte arrived
+  uint64_t position_ = 0;
+  std::string failure_;
 };
-
-// Writes one image through OpenImageIO into the already created (empty) temporary file. The plugin
-// is chosen by format name, because the temporary file's name does not end in the extension.
-void writeWithOiio(const TempFile& temp, const char* formatName, const OIIO::ImageSpec& spec,
-                   OIIO::TypeDesc dataFormat, const void* data) {
-  auto out = OIIO::ImageOutput::create(formatName);
-  if (!out) throw std::runtime_error(std::string("OpenImageIO has no ") + formatName + " writer: " +
-                                     OIIO::geterror());
-  if (!out->supports("ioproxy"))
-    throw std::runtime_error(std::string("OpenImageIO's ") + formatName + " writer cannot write through a proxy");
-  DescriptorSink sink(temp);
-  out->set_ioproxy(&sink);
-  auto failed = [&](std::string reason) {
-    if (!sink.failure().empty()) reason = sink.failure();  // the cause, not its consequence
-    return std::runtime_error(reason.empty() ? "the image writer failed" : reason);
-  };
-  if (!out->open(temp.path, spec)) throw failed(out->geterror());
-  if (!out->write_image(dataFormat, data)) {
-    std::string reason = out->geterror();
-    out->close();
-    throw failed(reason);
-  }
-  if (!out->close()) throw failed(out->geterror());
-  if (!sink.failure().empty()) throw failed("");
-}
-
-// Provenance as string attributes: OpenImageIO writes them as EXR header attributes and as PNG
-// tEXt chunks (ImageDescription under PNG's keyword "Description").
-void addMetadata(OIIO::ImageSpec& spec, const OutputMetadata& metadata) {
-  for (const auto& [name, value] : metadataAttributes(metadata)) spec.attribute(name, value);
-}
 
 // The image row (0 = top) that holds framebuffer row y (0 = bottom).
 int fileRow(int y, int height) { return height - 1 - y; }
@@ -112,11 +176,7 @@ void checkImage8(const Image8& image) {
 
 void writePng8(const Image8& image, const std::string& path, const OutputMetadata& metadata) {
   checkImage8(image);
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
-  addMetadata(spec, metadata);
-  writeFileAtomically(path, [&](const TempFile& temp) {
-    writeWithOiio(temp, "png", spec, OIIO::TypeDesc::UINT8, image.pixels.data());
-  });
+  writeFileAtomically(path, [&](const TempFile& temp) { writePngFile(temp, image, metadata); });
 }
 
 void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha, const OutputMetadata& metadata) {
@@ -164,77 +224,127 @@ ExrExtras perLightStencilChannels(std::span<const PixelVector<uint8_t>> stencils
   return extras;
 }
 
-std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& extras) {
+namespace {
+
+// One channel of an EXR as the values where they already are: `count` values of 4 bytes, the i-th
+// (framebuffer order) at values + i * stride. The colour channels are read in place from the
+// colour buffer, the extras from their vectors; only Z (decoded) and the stencil (widened to 32
+// bits) need storage of their own, in ExrStorage.
+struct ExrPlane {
+  std::string name;
+  ChannelKind kind = ChannelKind::Float;
+  const char* values = nullptr;
+  size_t stride = 4;
+};
+struct ExrStorage {
+  std::vector<float> z;
+  std::vector<uint32_t> stencil;
+};
+
+// The channels of exrChannels' contract, in its order, with its checks.
+std::vector<ExrPlane> exrPlanes(const Framebuffer& fb, const ExrExtras& extras, ExrStorage& storage) {
   const size_t n = size_t(fb.width()) * size_t(fb.height());
-  std::vector<NamedChannel> channels;
+  std::vector<ExrPlane> planes;
   if (fb.hasColor()) {
     const char* names[4] = {"R", "G", "B", "A"};
-    for (int k = 0; k < 4; ++k) {
-      std::vector<float> v(n);
-      for (size_t i = 0; i < n; ++i) v[i] = fb.color()[i][k];
-      channels.push_back(NamedChannel::floatChannel(names[k], std::move(v)));
-    }
+    const char* first = reinterpret_cast<const char*>(fb.color().data());
+    for (size_t k = 0; k < 4; ++k)
+      planes.push_back({names[k], ChannelKind::Float, first + k * sizeof(float), sizeof(glm::vec4)});
   }
   if (fb.hasDepth()) {
-    std::vector<float> z(n);
-    for (size_t i = 0; i < n; ++i) z[i] = float(fb.depthCodec().decode(fb.depthCodes()[i]));
-    channels.push_back(NamedChannel::floatChannel("Z", std::move(z)));
+    storage.z.resize(n);
+    for (size_t i = 0; i < n; ++i) storage.z[i] = float(fb.depthCodec().decode(fb.depthCodes()[i]));
+    planes.push_back({"Z", ChannelKind::Float, reinterpret_cast<const char*>(storage.z.data())});
   }
-  if (fb.hasStencil()) channels.push_back(NamedChannel::stencilChannel("stencil", fb.stencil()));
-
+  if (fb.hasStencil()) {
+    storage.stencil.assign(fb.stencil().begin(), fb.stencil().end());
+    planes.push_back({"stencil", ChannelKind::UInt32, reinterpret_cast<const char*>(storage.stencil.data())});
+  }
   for (const NamedChannel& extra : extras.channels) {
     if (extra.name.empty()) throw std::invalid_argument("an extra EXR channel has no name");
     if (extra.size() != n)
       throw std::invalid_argument("extra EXR channel '" + extra.name + "' has " + std::to_string(extra.size()) +
                                   " values, the framebuffer " + std::to_string(n));
-    channels.push_back(extra);
+    const char* values = extra.kind == ChannelKind::Float ? reinterpret_cast<const char*>(extra.floats.data())
+                                                          : reinterpret_cast<const char*>(extra.uints.data());
+    planes.push_back({extra.name, extra.kind, values});
   }
   std::set<std::string> seen;
-  for (const NamedChannel& c : channels)
-    if (!seen.insert(c.name).second) throw std::invalid_argument("EXR channel '" + c.name + "' is given twice");
+  for (const ExrPlane& p : planes)
+    if (!seen.insert(p.name).second) throw std::invalid_argument("EXR channel '" + p.name + "' is given twice");
+  return planes;
+}
+
+}  // namespace
+
+std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& extras) {
+  const size_t n = size_t(fb.width()) * size_t(fb.height());
+  ExrStorage storage;
+  std::vector<NamedChannel> channels;
+  for (const ExrPlane& p : exrPlanes(fb, extras, storage)) {
+    NamedChannel c;
+    c.name = p.name;
+    c.kind = p.kind;
+    if (p.kind == ChannelKind::Float) c.floats.resize(n);
+    else c.uints.resize(n);
+    char* out = p.kind == ChannelKind::Float ? reinterpret_cast<char*>(c.floats.data()) : reinterpret_cast<char*>(c.uints.data());
+    for (size_t i = 0; i < n; ++i) std::memcpy(out + i * 4, p.values + i * p.stride, 4);
+    channels.push_back(std::move(c));
+  }
   return channels;
 }
 
+namespace {
+// How many threads OpenEXR compresses with (setImageWriterThreads); 0 compresses on the caller's.
+std::atomic<int> exrThreads{0};
+}  // namespace
+
+void setImageWriterThreads(int threads) { exrThreads.store(threads > 1 ? threads : 0); }
+
 void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras, const OutputMetadata& metadata) {
-  const std::vector<NamedChannel> channels = exrChannels(fb, extras);
-  if (channels.empty())
+  ExrStorage storage;
+  const std::vector<ExrPlane> planes = exrPlanes(fb, extras, storage);
+  if (planes.empty())
     throw std::invalid_argument("cannot write '" + path + "': the framebuffer has no buffers to write");
-  const int w = fb.width(), h = fb.height(), nc = int(channels.size());
+  const int w = fb.width(), h = fb.height();
 
-  // Per-channel formats: without them OpenImageIO would store every channel in one format.
-  OIIO::ImageSpec spec(w, h, nc, OIIO::TypeDesc::FLOAT);
-  spec.channelnames.clear();
-  spec.channelformats.clear();
-  spec.alpha_channel = -1;
-  spec.z_channel = -1;
-  for (int k = 0; k < nc; ++k) {
-    const NamedChannel& c = channels[size_t(k)];
-    spec.channelnames.push_back(c.name);
-    spec.channelformats.push_back(c.kind == ChannelKind::Float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT32);
-    if (c.name == "A") spec.alpha_channel = k;
-    if (c.name == "Z") spec.z_channel = k;
-  }
-  spec.attribute("compression", "zip");
-  // An empty DateTime keeps OpenImageIO from stamping the current time into the header, so the same
-  // framebuffer always gives the same bytes (goldens diff cleanly).
-  spec.attribute("DateTime", "");
-  addMetadata(spec, metadata);
+  // The header OpenImageIO used to write, attribute for attribute: ZIP compression, the picture's
+  // windows, the provenance as strings (ImageDescription as EXR's "comments"), and an empty
+  // capDate, the time stamp's place, so the same framebuffer always gives the same bytes.
+  Imf::Header header(w, h);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  // zlib's fastest level: the float channels hardly compress further at higher levels, which
+  // take about twice as long (the file is read the same way; the level is not stored in it).
+  header.zipCompressionLevel() = 1;
+  for (const ExrPlane& p : planes)
+    header.channels().insert(p.name, Imf::Channel(p.kind == ChannelKind::Float ? Imf::FLOAT : Imf::UINT));
+  header.insert("capDate", Imf::StringAttribute(""));
+  for (const auto& [name, value] : metadataAttributes(metadata))
+    header.insert(name == "ImageDescription" ? "comments" : name, Imf::StringAttribute(value));
 
-  // Every channel is 4 bytes wide, so a pixel is nc words; floats travel as their bit patterns.
-  std::vector<uint32_t> words(size_t(w) * size_t(h) * size_t(nc));
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const size_t src = fb.index(x, y);
-      const size_t dst = (size_t(fileRow(y, h)) * size_t(w) + size_t(x)) * size_t(nc);
-      for (int k = 0; k < nc; ++k) {
-        const NamedChannel& c = channels[size_t(k)];
-        words[dst + size_t(k)] = c.kind == ChannelKind::Float ? std::bit_cast<uint32_t>(c.floats[src]) : c.uints[src];
-      }
-    }
+  // One slice per channel, straight from its values in framebuffer order: the file's row r (top
+  // first) is framebuffer row h - 1 - r, so each slice starts at the top row and steps down (a
+  // negative row stride, as two's complement in OpenEXR's size_t), and nothing is interleaved.
+  Imf::FrameBuffer slices;
+  for (const ExrPlane& p : planes) {
+    const ptrdiff_t rowBytes = ptrdiff_t(w) * ptrdiff_t(p.stride);
+    char* top = const_cast<char*>(p.values) + ptrdiff_t(h - 1) * rowBytes;
+    slices.insert(p.name, Imf::Slice(p.kind == ChannelKind::Float ? Imf::FLOAT : Imf::UINT, top, p.stride,
+                                     size_t(-rowBytes)));
   }
   writeFileAtomically(path, [&](const TempFile& temp) {
-    // TypeUnknown: the data is in the file's own per-channel formats.
-    writeWithOiio(temp, "openexr", spec, OIIO::TypeUnknown, words.data());
+    DescriptorStream stream(temp);
+    try {
+      // ZIP compresses blocks of 16 rows independently: the bytes do not depend on the threads.
+      const int threads = exrThreads.load();
+      if (threads > 0 && Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
+      Imf::OutputFile file(stream, header, threads);
+      file.setFrameBuffer(slices);
+      file.writePixels(h);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(stream.failure().empty() ? e.what() : stream.failure());  // the cause first
+    }
+    if (!stream.failure().empty()) throw std::runtime_error(stream.failure());
   });
 }
 

@@ -80,6 +80,10 @@ std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& ex
 void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras = {},
               const OutputMetadata& metadata = {});
 
+// The threads writeExr compresses with (ZIP blocks are independent: the same bytes for any number);
+// at most 1 (the default) compresses on the calling thread. For the whole process.
+void setImageWriterThreads(int threads);
+
 // Chooses by extension, case-insensitive: ".png" -> writePng, ".exr" -> writeExr. Any other
 // extension throws std::invalid_argument naming the supported ones.
 void writeImage(const Framebuffer& fb, const std::string& path, const OutputMetadata& metadata = {});

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include <OpenImageIO/hash.h>
+#include <nettle/sha1.h>
 
 namespace shadowref {
 
@@ -33,16 +33,23 @@ std::vector<std::pair<std::string, std::string>> metadataAttributes(const Output
 std::string sha1OfFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read '" + path + "' to hash it");
-  OIIO::SHA1 sha1;
+  sha1_ctx sha1;
+  sha1_init(&sha1);
   char buffer[1 << 16];
   while (in) {
     in.read(buffer, sizeof buffer);
-    if (in.gcount() > 0) sha1.append(buffer, size_t(in.gcount()));
+    if (in.gcount() > 0) sha1_update(&sha1, size_t(in.gcount()), reinterpret_cast<const uint8_t*>(buffer));
   }
   if (in.bad()) throw std::runtime_error("cannot read '" + path + "' to hash it");
-  std::string digest = sha1.digest();
-  std::transform(digest.begin(), digest.end(), digest.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return digest;
+  uint8_t digest[SHA1_DIGEST_SIZE];
+  sha1_digest(&sha1, SHA1_DIGEST_SIZE, digest);
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string hex;
+  for (const uint8_t byte : digest) {
+    hex += kHex[byte >> 4];
+    hex += kHex[byte & 15];
+  }
+  return hex;
 }
 
 std::string shellWord(const std::string& word) {

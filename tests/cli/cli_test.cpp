@@ -429,3 +429,57 @@ TEST_CASE("info reports an inside-out closed mesh by the sign of the volume it e
   CHECK(minimal.out.find("inside out") == std::string::npos);
   CHECK(minimal.out.find("encloses volume ") != std::string::npos);
 }
+
+TEST_CASE("every subcommand that reads a scene takes -D before or after it", "[cli]") {
+  const fs::path dir = freshDir("d-order");
+  for (const bool before : {true, false}) {
+    INFO((before ? "-D before the scene" : "-D after the scene"));
+    const auto with = [&](const std::string& command, const std::string& d, const std::string& rest = "") {
+      const std::string scene = "scenes/minimal.yaml";
+      return runShadowref(command + " " + (before ? d + " " + scene : scene + " " + d) + " " + rest);
+    };
+    // info prints the size the override set; check refuses an override the scene rejects.
+    const CliRun info = with("info", "-D image.width=37 -D image.height=29");
+    INFO(info.err);
+    CHECK(info.status == 0);
+    CHECK(info.out.find("image: 37 x 29") != std::string::npos);
+    CHECK(with("check", "-D image.width=37").status == 0);
+    const CliRun bad = with("check", "-D shadow.method=nosuchmethod");
+    CHECK(bad.status == 2);
+    CHECK(bad.err.find("nosuchmethod") != std::string::npos);
+    const CliRun bench = with("bench", "-D image.width=24 -D image.height=16", "--frames 1 --csv");
+    INFO(bench.err);
+    CHECK(bench.status == 0);
+    CHECK(bench.out.find(",24,16,1,") != std::string::npos);
+    const std::string png = (dir / (before ? "before.png" : "after.png")).string();
+    const CliRun render = with("render", "-D image.width=24 -D image.height=16", "--quiet -o '" + png + "'");
+    INFO(render.err);
+    CHECK(render.status == 0);
+    CHECK(fs::exists(png));
+  }
+}
+
+TEST_CASE("under taskset -c 0 a render uses one thread by default, as its metadata says", "[cli][threads]") {
+  if (std::system("command -v taskset >/dev/null 2>&1") != 0) {
+    WARN("taskset (util-linux) is not installed");
+    return;
+  }
+  const fs::path dir = freshDir("taskset");
+  const std::string png = (dir / "one.png").string();
+  // The CLI's own process under the mask: taskset runs it on CPU 0 only.
+  const std::string cli = std::string("'") + SHADOWREF_CLI + "'";
+  const std::string cmd = std::string("cd '") + SHADOWREF_SOURCE_DIR + "' && taskset -c 0 " + cli +
+                          " render scenes/minimal.yaml -D image.width=32 -D image.height=24 --quiet -o '" + png + "'";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  // The PNG's tEXt chunk "shadowref:threads" holds the thread count the frame ran on: a chunk is
+  // a 4-byte big-endian length, "tEXt", then keyword NUL value.
+  const std::string bytes = slurp(png);
+  const std::string key = std::string("tEXtshadowref:threads") + '\0';
+  const size_t at = bytes.find(key);
+  REQUIRE(at != std::string::npos);
+  REQUIRE(at >= 4);
+  uint32_t length = 0;
+  for (size_t i = at - 4; i < at; ++i) length = length << 8 | uint8_t(bytes[i]);
+  REQUIRE(length > key.size() - 5);
+  CHECK(bytes.substr(at + key.size(), length - (key.size() - 4)) == "1");
+}

@@ -1,6 +1,8 @@
 // The thread pool under the rasterizer: every task runs exactly once per run, runs follow each
 // other without a late worker taking a task of the next one, and a task's exception reaches the
 // caller of run() after the other tasks have finished.
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -246,4 +248,31 @@ TEST_CASE("idle workers sleep after their spin, and a run wakes them", "[raster]
   pool.run(64, [&](int i) { hits[size_t(i)].fetch_add(1); });  // sleeping workers are woken: every task once
   for (const std::atomic<int>& h : hits) CHECK(h.load() == 1);
   CHECK(sleepersReach(pool, 2));
+}
+
+TEST_CASE("the default thread count is the number of CPUs in the affinity mask", "[raster][threads]") {
+  // On a thread of its own, so that narrowing its mask leaves the test runner's threads alone.
+  // Catch's assertions are made on the test's thread, after the probe has ended.
+  int full = 0, narrowed = 0, expectedFull = 0;
+  bool maskRead = false, maskSet = false;
+  std::thread probe([&] {
+    cpu_set_t mask;
+    CPU_ZERO(&mask);
+    maskRead = sched_getaffinity(0, sizeof mask, &mask) == 0;
+    if (!maskRead) return;
+    expectedFull = CPU_COUNT(&mask);
+    full = defaultThreadCount();
+    int first = 0;
+    while (!CPU_ISSET(first, &mask)) ++first;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(first, &one);
+    maskSet = sched_setaffinity(0, sizeof one, &one) == 0;
+    narrowed = defaultThreadCount();
+  });
+  probe.join();
+  REQUIRE(maskRead);
+  REQUIRE(maskSet);
+  CHECK(full == expectedFull);
+  CHECK(narrowed == 1);
 }

@@ -51,7 +51,7 @@ TEST_CASE("Degenerate triangles (a point, collinear along pixel centres, repeate
   CHECK(pipeline->stats().fragments == 0);
 }
 
-TEST_CASE("A fan of sliver triangles (thousandths of a pixel wide) covers its square exactly once", "[extremes]") {
+TEST_CASE("A fan of sliver triangles (thousandths of a pixel wide) covers its square exactly once", "[extremes][slow]") {
 #if defined(__SANITIZE_ADDRESS__)
   constexpr int kPerSide = 4000;
 #else

@@ -80,7 +80,7 @@ TEST_CASE("grouped crease normals equal the plain per-corner rule bit for bit", 
   }
 }
 
-TEST_CASE("a flat disc of 200 000 triangles gets one upward normal per position", "[mesh][crease]") {
+TEST_CASE("a flat disc of 200 000 triangles gets one upward normal per position", "[mesh][crease][slow]") {
   constexpr int kSides = 200000;
   Mesh m = fan(kSides, 0.0);
   computeCreaseNormals(m, 40.0);
@@ -91,7 +91,7 @@ TEST_CASE("a flat disc of 200 000 triangles gets one upward normal per position"
   CHECK(worst < 1e-15);
 }
 
-TEST_CASE("a million corners at one apex with a million different normals finish smooth", "[mesh][crease]") {
+TEST_CASE("a million corners at one apex with a million different normals finish smooth", "[mesh][crease][slow]") {
   // A shallow cone: its sides lean 0.57 degrees, so every pair of them is within the crease angle
   // and the apex normal is the mean of all, straight up by symmetry. The plain rule would compare
   // 10^12 pairs at the apex.

@@ -296,7 +296,7 @@ TEST_CASE("a stray ',' where a document starts is a syntax error, not yaml-cpp's
   CHECK_THAT(yamlErrorOf(kBoxScene, o), StartsWith("<command line>:1:13: YAML syntax error: unexpected token"));
 }
 
-TEST_CASE("tessellation that would not fit in memory is an error at the primitive", "[loader]") {
+TEST_CASE("tessellation that would not fit in memory is an error at the primitive", "[loader][slow]") {
   CHECK_THAT(yamlErrorOf("meshes:\n  s: {sphere: {slices: 1024, stacks: 1024}}\n"),
              StartsWith("t.yaml:2:15: meshes.s.sphere: 1024 x 1024 segments are more than 262144 cells"));
   CHECK_THAT(yamlErrorOf("meshes:\n  t: {torus: {major_segments: 1000, minor_segments: 1000}}\n"),
