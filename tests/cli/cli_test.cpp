@@ -382,7 +382,7 @@ TEST_CASE("render with the reference and the fast pipeline writes the same pixel
 }
 
 TEST_CASE("render warns once per open, non-manifold, inconsistently wound or inside-out mesh, naming it and what "
-          "it does; a closed scene gets no warning", "[cli]") {
+          "it does, and a closed scene gets no warning", "[cli]") {
   const std::string png = (scratch() / "irregular.png").string();
   const CliRun r = runShadowref("render scenes/irregular.yaml -D image.width=64 -D image.height=48 -o '" + png + "'");
   INFO(r.err);

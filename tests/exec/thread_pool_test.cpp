@@ -110,7 +110,7 @@ TEST_CASE("a vertex index out of range is an error with threads too, and nothing
   for (uint8_t v : fb.stencil()) REQUIRE(v == 0);
 }
 
-TEST_CASE("a maker's pipelines share its pool; a renderer made with a count has a pool of its own",
+TEST_CASE("a maker's pipelines share its pool, and a renderer made with a count has a pool of its own",
           "[raster][threads]") {
   CHECK(makeThreadPool(1) == nullptr);
   const FastPipelineMaker one(1);
