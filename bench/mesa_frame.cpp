@@ -13,6 +13,7 @@
 #include "gl/lighting.h"
 #include "gl/render_state.h"
 #include "shadow/facing.h"
+#include "shadow/light_shadow.h"
 #include "shadow/light_view.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
@@ -645,7 +646,17 @@ struct MesaFrameRenderer::Impl {
 
   void renderShadowMap() {
     const Light& light = lights.front();
-    const LightView lv = shadowLightView(light, worldBounds(instances));
+    // The same light view as shadowref's map (fitted to the casters where the scene says so), and
+    // its lookup of points outside a fitted map as lit: the border's depth 1 passes LEQUAL.
+    const StandardMapView standard = standardMapView(scene, instances, view, light, worldBounds(instances));
+    const LightView& lv = standard.view;
+    glBindTexture(GL_TEXTURE_2D, mapTexture);
+    const GLint wrap = standard.fittedToCasters ? GL_CLAMP_TO_BORDER : GL_CLAMP_TO_EDGE;
+    const GLfloat border[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, border);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+    glBindTexture(GL_TEXTURE_2D, 0);
     const int size = scene.shadow.mapSize;
     // Step 1: depth from the light (shadow_map_renderer.cpp renderDepthMap).
     RenderState map;

@@ -193,6 +193,17 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   return tex;
 }
 
+StandardMapView standardMapView(const Scene& scene, const std::vector<Instance>& instances, const SceneView& view,
+                                const Light& light, const Aabb& bounds) {
+  if (light.type != LightType::Directional || scene.shadow.fit != MapFit::Casters)
+    return {shadowLightView(light, bounds), false, {}};
+  const Camera& camera = scene.camera;
+  CasterFit fit = fitDirectionalToCasters(light, instances, bounds,
+                                          frustumCorners(camera, view.aspect, fitFarToBounds(camera, bounds)),
+                                          camera.eye, scene.shadow.mapSize, scene.shadow.pcf);
+  return {fit.view, fit.fitted, std::move(fit.casters)};
+}
+
 std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vector<Instance>& instances,
                                               const SceneView& view, const Light& light, bool trapezoidal,
                                               const Pipeline& frame, RasterStats& stats) {
@@ -210,19 +221,14 @@ std::unique_ptr<LightShadow> buildLightShadow(const Scene& scene, const std::vec
     }
     return ls;
   }
-  if (light.type == LightType::Directional && !trapezoidal && scene.shadow.fit == MapFit::Casters) {
-    // The orthographic map fitted to the casters that can shadow what the camera sees
-    // (caster_fit.h); a visible point outside it is shadowed by nothing and looked up as lit.
+  if (trapezoidal) {
     // TSM keeps the scene box's light view: its trapezoid focuses the map itself.
-    const Camera& camera = scene.camera;
-    CasterFit fit = fitDirectionalToCasters(light, instances, bounds,
-                                            frustumCorners(camera, view.aspect, fitFarToBounds(camera, bounds)),
-                                            camera.eye, scene.shadow.mapSize, scene.shadow.pcf);
-    ls->views[0] = fit.view;
-    ls->fittedToCasters = fit.fitted;
-    ls->fittedCasters = std::move(fit.casters);
-  } else {
     ls->views[0] = shadowLightView(light, bounds);
+  } else {
+    StandardMapView standard = standardMapView(scene, instances, view, light, bounds);
+    ls->views[0] = standard.view;
+    ls->fittedToCasters = standard.fittedToCasters;
+    ls->fittedCasters = std::move(standard.casters);
   }
   const LightView& lv = ls->views[0];
   glm::dmat4 projection = lv.projection;

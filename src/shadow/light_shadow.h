@@ -95,6 +95,18 @@ glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const 
 inline int pcfKernelWidth(int pcf) { return pcf > 1 ? 2 * (pcf / 2) + 1 : 1; }
 double pcfOffsetFactor(double offsetFactor, int pcf);
 
+// The light view of a standard (untrapezoidal) map of a directional or spot light: with
+// `shadow.fit: casters` a directional light's map is fitted to the casters that can shadow what
+// the camera sees (caster_fit.h), otherwise to `bounds`. The benchmark's GL side draws its map
+// through the same view, so both draw the same map.
+struct StandardMapView {
+  LightView view;
+  bool fittedToCasters = false;  // a visible point outside the map is shadowed by nothing
+  std::vector<size_t> casters;   // with fittedToCasters: the casters it was fitted to
+};
+StandardMapView standardMapView(const Scene& scene, const std::vector<Instance>& instances, const SceneView& view,
+                                const Light& light, const Aabb& bounds);
+
 // Renders `light`'s map(s) with the scene's ShadowSettings and sets up the lookup. `trapezoidal`
 // selects TSM for directional and spot lights (point lights always get cube maps). Each map is
 // drawn by a pipeline like `frame` (Pipeline::forFramebuffer). Raster work adds to `stats`.
