@@ -136,6 +136,10 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
                      "'fast' (default: the executor, threaded) or 'reference' (the readable GL pipeline, one thread); "
                      "both give the same bytes")
       ->check(CLI::IsMember({"reference", "fast"}));
+  render->add_option("--exr-compression", args.exrCompression,
+                     "Lossless compression of .exr outputs: 'rle' (default: fast, larger), 'zip' (smaller, about "
+                     "five times the encoding time), 'none'")
+      ->check(CLI::IsMember({"none", "rle", "zip"}));
   render->add_flag("--quiet", args.quiet, "Print nothing but errors");
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
   render->add_option("--dump", args.dumps,
@@ -294,6 +298,7 @@ int runRender(const RenderArgs& args) {
     const FrameResult frame = renderFrame(*scene, options);
     // The EXR's ZIP blocks compress on as many threads as a fast frame renders on (same bytes).
     if (anyExr || options.keepShadowMaps) setImageWriterThreads(pipelineThreads(PipelineKind::Fast, options.threads));
+    setExrCompression(*exrCompressionNamed(args.exrCompression));
     if (!args.quiet)
       for (const std::string& warning : frame.warnings) std::cerr << "warning: " << warning << '\n';
     ExrExtras extras = perLightStencilChannels(frame.stencilPerLight, frame.stencilLightNames);

@@ -297,9 +297,28 @@ std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& ex
 namespace {
 // How many threads OpenEXR compresses with (setImageWriterThreads); 0 compresses on the caller's.
 std::atomic<int> exrThreads{0};
+std::atomic<ExrCompression> exrCompression{kDefaultExrCompression};
+
+Imf::Compression openExrCompression(ExrCompression c) {
+  switch (c) {
+    case ExrCompression::None: return Imf::NO_COMPRESSION;
+    case ExrCompression::Rle: return Imf::RLE_COMPRESSION;
+    case ExrCompression::Zip: return Imf::ZIP_COMPRESSION;
+  }
+  return Imf::ZIP_COMPRESSION;
+}
 }  // namespace
 
 void setImageWriterThreads(int threads) { exrThreads.store(threads > 1 ? threads : 0); }
+
+std::optional<ExrCompression> exrCompressionNamed(std::string_view name) {
+  if (name == "none") return ExrCompression::None;
+  if (name == "rle") return ExrCompression::Rle;
+  if (name == "zip") return ExrCompression::Zip;
+  return std::nullopt;
+}
+
+void setExrCompression(ExrCompression compression) { exrCompression.store(compression); }
 
 void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras, const OutputMetadata& metadata) {
   ExrStorage storage;
@@ -308,13 +327,13 @@ void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& e
     throw std::invalid_argument("cannot write '" + path + "': the framebuffer has no buffers to write");
   const int w = fb.width(), h = fb.height();
 
-  // The header OpenImageIO used to write, attribute for attribute: ZIP compression, the picture's
-  // windows, the provenance as strings (ImageDescription as EXR's "comments"), and an empty
-  // capDate, the time stamp's place, so the same framebuffer always gives the same bytes.
+  // The header OpenImageIO used to write, attribute for attribute: the picture's windows, the
+  // provenance as strings (ImageDescription as EXR's "comments"), and an empty capDate, the time
+  // stamp's place, so the same framebuffer always gives the same bytes; the compression chosen.
   Imf::Header header(w, h);
-  header.compression() = Imf::ZIP_COMPRESSION;
-  // zlib's fastest level: the float channels hardly compress further at higher levels, which
-  // take about twice as long (the file is read the same way; the level is not stored in it).
+  header.compression() = openExrCompression(exrCompression.load());
+  // zlib's fastest level for ZIP: the float channels hardly compress further at higher levels,
+  // which take longer (the file is read the same way; the level is not stored in it).
   header.zipCompressionLevel() = 1;
   for (const ExrPlane& p : planes)
     header.channels().insert(p.name, Imf::Channel(p.kind == ChannelKind::Float ? Imf::FLOAT : Imf::UINT));
@@ -335,7 +354,8 @@ void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& e
   writeFileAtomically(path, [&](const TempFile& temp) {
     DescriptorStream stream(temp);
     try {
-      // ZIP compresses blocks of 16 rows independently: the bytes do not depend on the threads.
+      // Every compression works on independent blocks of rows (16 for ZIP, 1 for RLE and none):
+      // the bytes do not depend on the threads.
       const int threads = exrThreads.load();
       if (threads > 0 && Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
       Imf::OutputFile file(stream, header, threads);

@@ -8,8 +8,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "image/output_metadata.h"
@@ -74,8 +76,8 @@ ExrExtras perLightStencilChannels(std::span<const PixelVector<uint8_t>> stencils
 // twice. Shared with compareWithExr so a golden is compared with exactly what would be written.
 std::vector<NamedChannel> exrChannels(const Framebuffer& fb, const ExrExtras& extras = {});
 
-// Writes exrChannels(fb, extras) as a ZIP-compressed (lossless) scanline OpenEXR file with
-// per-channel formats and no time stamp: the same framebuffer gives the same bytes.
+// Writes exrChannels(fb, extras) as a losslessly compressed (setExrCompression) scanline OpenEXR
+// file with per-channel formats and no time stamp: the same framebuffer gives the same bytes.
 // A framebuffer with no buffers and no extras is an error.
 void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& extras = {},
               const OutputMetadata& metadata = {});
@@ -83,6 +85,17 @@ void writeExr(const Framebuffer& fb, const std::string& path, const ExrExtras& e
 // The threads writeExr compresses with (ZIP blocks are independent: the same bytes for any number);
 // at most 1 (the default) compresses on the calling thread. For the whole process.
 void setImageWriterThreads(int threads);
+
+// OpenEXR's lossless compressions writeExr can use; every reader reads each of them. For the
+// 800x640 room's six 32-bit channels (12.3 MB raw), one thread: RLE takes about a fifth of ZIP's
+// time for a file 1.7 times as large, which keeps a render to EXR within a start-up budget of
+// tens of milliseconds; ZIP (zlib's fastest level) is for keeping files; none is the fastest.
+enum class ExrCompression { None, Rle, Zip };
+inline constexpr ExrCompression kDefaultExrCompression = ExrCompression::Rle;
+// "none", "rle", "zip"; nullopt for another name.
+std::optional<ExrCompression> exrCompressionNamed(std::string_view name);
+// The compression writeExr uses from now on, for the whole process (default RLE).
+void setExrCompression(ExrCompression compression);
 
 // Chooses by extension, case-insensitive: ".png" -> writePng, ".exr" -> writeExr. Any other
 // extension throws std::invalid_argument naming the supported ones.

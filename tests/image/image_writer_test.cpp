@@ -102,6 +102,30 @@ TEST_CASE("EXR values are exact and framebuffer row 0 is the last scanline of th
   CHECK(alpha == std::vector<float>{1.f, 0.875f, 0.75f, 1.f, 0.875f, 0.75f});
 }
 
+TEST_CASE("EXR compressions: RLE by default, each lossless and named in the header", "[image]") {
+  TempDir dir("exr-compression");
+  struct Restore {
+    ~Restore() { setExrCompression(kDefaultExrCompression); }
+  } restore;
+  CHECK(kDefaultExrCompression == ExrCompression::Rle);
+  CHECK_FALSE(exrCompressionNamed("lzw").has_value());
+  const Framebuffer fb = makeFilledFramebuffer();
+  writeExr(fb, dir.file("default.exr"));
+  CHECK(readSpec(dir.file("default.exr")).spec.get_string_attribute("compression") == "rle");
+  for (const char* name : {"none", "rle", "zip"}) {
+    INFO(name);
+    setExrCompression(*exrCompressionNamed(name));
+    const std::string path = dir.file(std::string(name) + ".exr");
+    writeExr(fb, path);
+    ReadBack r = readSpec(path);
+    CHECK(r.spec.get_string_attribute("compression") == name);
+    CHECK(readChannelRaw<uint32_t>(path, channelOf(r, "stencil"), OIIO::TypeDesc::UINT32) ==
+          std::vector<uint32_t>{31, 41, 51, 1, 11, 21});
+    CHECK(readChannelRaw<float>(path, channelOf(r, "Z"), OIIO::TypeDesc::FLOAT) ==
+          std::vector<float>{4 / 8.f, 5 / 8.f, 6 / 8.f, 1 / 8.f, 2 / 8.f, 3 / 8.f});
+  }
+}
+
 TEST_CASE("EXR carries no time stamp, so the same framebuffer gives the same bytes", "[image]") {
   TempDir dir("exr-no-date");
   writeExr(makeFilledFramebuffer(), dir.file("a.exr"));
