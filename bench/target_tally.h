@@ -1,5 +1,5 @@
 // The speed targets over many runs of bench/vs-mesa (vs_mesa --tally FILE...): each run's own
-// table of targets (issue_targets.h, the end of its output) read back, and for every figure in how
+// table of targets (speed_targets.h, the end of its output) read back, and for every figure in how
 // many runs it was met. On a shared host one run is a sample: this shows which figures a run meets
 // nearly always and which depend on the host. Rows without a verdict (information, such as two
 // threads against one) are not counted.
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "issue_targets.h"
+#include "speed_targets.h"
 
 namespace shadowref::bench {
 

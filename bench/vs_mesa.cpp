@@ -16,7 +16,7 @@
 // vertex) against shadowref with every material switched to Gouraud shading (the same lighting
 // equation per vertex, the colour interpolated), and Mesa with a GLSL program that shades per pixel
 // with shadowref's Phong model (mesa_frame.h) against shadowref as the scenes are written (per
-// pixel). The issue's own reference figures are fixed-function Mesa against per-pixel shadowref,
+// pixel). The original reference figures are fixed-function Mesa against per-pixel shadowref,
 // unequal work; that ratio is printed too. How close each Mesa frame is to its shadowref partner
 // (share of pixels more than 2/255 apart, mean difference) is the last table of a whole run: it is
 // what shows the pairs like for like. --agreement prints only that table, --images DIR keeps its
@@ -28,7 +28,7 @@
 // before every 2-thread run. It is a figure, not a target: on a shared host of two cores the host
 // decides it, not the code. What more threads must do is give the same bytes: every buffer of 1,
 // 2 and 8 threads is compared, and a difference fails the run. A run ends with the speed targets
-// checked against its own figures (issue_targets.h).
+// checked against its own figures (speed_targets.h).
 //
 //   vs_mesa [--rounds N] [--frames N] [--csv FILE] [--quick] [--no-scaling | --series]
 //   vs_mesa --agreement [--images DIR]
@@ -56,7 +56,7 @@
 
 #include "frames_in_turn.h"
 #include "identical_frames.h"
-#include "issue_targets.h"
+#include "speed_targets.h"
 #include "series_stats.h"
 #include "target_tally.h"
 #include "osmesa/osmesa_harness.h"
@@ -887,7 +887,7 @@ std::vector<std::vector<Measured>> compareScenes(const Settings& s, std::ofstrea
                              {"sr-1t", "sr-2t", "llpp-1t", "llpp-2t", "sopp"},
                              {kSr1, kSr2, kLp1, kLp2, kSopp},
                              {"vsLp1", "vsLp2", "vsSopp"}};
-  const PairColumns unequal{"Unequal work, the issue's reference figures: shadowref per pixel (sr) against Mesa's fixed\n"
+  const PairColumns unequal{"Unequal work, the original reference figures: shadowref per pixel (sr) against Mesa's fixed\n"
                             "function (per vertex: less work per fragment)",
                             {"sr-1t", "sr-2t", "llvm-1t", "llvm-2t", "softpipe"},
                             {kSr1, kSr2, kLl1, kLl2, kSoft},
@@ -1066,10 +1066,10 @@ void printCrossCore(const char* when, std::ofstream& csv) {
       << ",,,,\"ns for a cache line to pass from one core to the other\"\n";
 }
 
-// The speed targets against this run's figures (issue_targets.h), like for like: shadowref at
+// The speed targets against this run's figures (speed_targets.h), like for like: shadowref at
 // least as fast as llvmpipe at the same thread count and at least 10x softpipe, in both lighting
 // pairs; identical buffers; cost linear in houses and lights, read as a
-// least-squares line with R² of at least kLinearR2. The issue's unequal pairing is shown, not
+// least-squares line with R² of at least kLinearR2. The unequal pairing is shown, not
 // judged: per-pixel Phong in double against per-vertex lighting is not the same passes' work. Nor
 // is two threads against one, measured on frames in turn (Config::inTurn: the same host for both
 // counts) and shown with the same ratio from separate processes, the host's capacity for two

@@ -1,5 +1,5 @@
-// bench/issue_targets.h: the verdict vs_mesa prints last. Hand-made figures, hand-checked cells.
-#include "issue_targets.h"
+// bench/speed_targets.h: the verdict vs_mesa prints last. Hand-made figures, hand-checked cells.
+#include "speed_targets.h"
 
 #include <catch2/catch.hpp>
 

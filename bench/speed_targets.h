@@ -1,8 +1,8 @@
 // The speed targets checked against one run's figures, so that a run of bench/vs-mesa says by
 // itself which it met: each target a row, each compared scene a cell with its figure and "ok" or
-// "SHORT". Rows marked as information (two threads against one, the host's capacity, the issue's
-// unequal pairing) carry no verdict. Nothing here becomes an exit status: timing on a shared host
-// is a measurement, not a test (only determinism fails a run, in vs_mesa).
+// "SHORT". Rows marked as information (two threads against one, the host's capacity, per pixel
+// against per vertex) carry no verdict. Nothing here becomes an exit status: timing on a shared
+// host is a measurement, not a test (only determinism fails a run, in vs_mesa).
 #pragma once
 
 #include <cmath>
@@ -83,7 +83,7 @@ class TargetTable {
     std::vector<Cell> cells;
   };
 
-  // A threshold as written in the issue: 1, 10, 0.95.
+  // A threshold as the targets state it: 1, 10, 0.95.
   static std::string thresholdText(double threshold) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", threshold);
