@@ -10,14 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
-#include "shadow/soft_lights.h"
 #include "oracle/oracle.h"
 #include "oracle/triangle_bvh.h"
+#include "support/scene_oracle.h"
 
 using namespace shadowref;
 using oracle::OracleImage;
+using testing::castVolumeOracle;
+using testing::drawnLights;
 
 namespace {
 
@@ -27,31 +28,9 @@ constexpr int kWidth = 100, kHeight = 80;
 constexpr int kWidth = 200, kHeight = 160;
 #endif
 
-Scene sceneFile(const std::string& name) {
-  LoadOptions options;
-  options.overrides = {"image.width=" + std::to_string(kWidth), "image.height=" + std::to_string(kHeight)};
-  return loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/scenes/" + name, options);
-}
+Scene sceneFile(const std::string& name) { return testing::sceneAtSize(name, kWidth, kHeight); }
 
-FrameResult render(const Scene& scene, const char* method) {
-  FrameOptions options;
-  options.method = method;
-  options.keepStencil = true;
-  return renderFrame(scene, options);
-}
-
-OracleImage castFor(const Scene& scene, const Light& light) {
-  oracle::OracleOptions options;
-  options.forceInfiniteProjection = true;  // the volume renderer draws with P_inf ([Kuhn 2016, §3.3])
-  return castOracle(scene, light, options);
-}
-
-std::vector<Light> drawnLights(const Scene& scene) {
-  std::vector<Light> lights;
-  for (const Light& light : scene.lights)
-    for (const Light& l : expandSoftLight(light)) lights.push_back(l);
-  return lights;
-}
+FrameResult render(const Scene& scene, const char* method) { return testing::renderWithStencil(scene, method); }
 
 // Whether the triangle the pixel's ray hits, on the side the camera sees (its front: the scene
 // pass culls back faces), faces away from the light or has it in its plane.
@@ -92,7 +71,7 @@ TEST_CASE("open, non-manifold, inconsistently wound and inside-out meshes: z-pas
       CHECK(zpass.stencilPerLight[l] == zfail.stencilPerLight[l]);
       CHECK(automatic.stencilPerLight[l] == zfail.stencilPerLight[l]);
 
-      const OracleImage img = castFor(scene, lights[l]);
+      const OracleImage img = castVolumeOracle(scene, lights[l]);
       const auto& stencil = zfail.stencilPerLight[l];
       size_t compared = 0, shadowed = 0, mismatched = 0, oracleMethodsDiffer = 0, hits = 0, maskDisagrees = 0,
              ownBack = 0, ownBackLit = 0;
@@ -150,7 +129,7 @@ TEST_CASE("tent: the ground beside the tent, seen through the inside of its roof
   std::vector<FrameResult> frames;
   for (const char* method : {"zpass", "zfail", "auto"}) frames.push_back(render(scene, method));
   for (size_t l = 0; l < lights.size(); ++l) {
-    const OracleImage img = castFor(scene, lights[l]);
+    const OracleImage img = castVolumeOracle(scene, lights[l]);
     size_t throughRoof = 0, dark = 0;
     for (size_t i = 0; i < img.lit.size(); ++i) {
       if (img.hitInstance[i] != ground || !img.lit[i] || img.nearEdge[i]) continue;
