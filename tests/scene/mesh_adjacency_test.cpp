@@ -226,3 +226,19 @@ TEST_CASE("neither an open nor an inconsistently wound mesh, nor a closed one en
   CHECK(sheet.inconsistentEdges == 0);
   CHECK_FALSE(sheet.insideOut);
 }
+
+TEST_CASE("a box's eight corners: bit 0 of the index picks max.x, bit 1 max.y, bit 2 max.z", "[mesh]") {
+  const Aabb box{{-1.0, 2.0, 3.0}, {4.0, 5.0, 7.5}};
+  const std::array<glm::dvec3, 8> c = box.corners();
+  CHECK(c[0] == glm::dvec3(-1.0, 2.0, 3.0));
+  CHECK(c[1] == glm::dvec3(4.0, 2.0, 3.0));
+  CHECK(c[2] == glm::dvec3(-1.0, 5.0, 3.0));
+  CHECK(c[3] == glm::dvec3(4.0, 5.0, 3.0));
+  CHECK(c[4] == glm::dvec3(-1.0, 2.0, 7.5));
+  CHECK(c[7] == glm::dvec3(4.0, 5.0, 7.5));
+  // Every corner lies in the box, and together they span it.
+  Aabb spanned;
+  for (const glm::dvec3& p : c) spanned.add(p);
+  CHECK(spanned.min == box.min);
+  CHECK(spanned.max == box.max);
+}
