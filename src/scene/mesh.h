@@ -76,6 +76,11 @@ struct Mesh {
   // Closed, consistently wound, and enclosing a clearly negative volume: every triangle is wound
   // clockwise seen from outside, so its face normals point inwards.
   bool insideOut = false;
+  // Closed and consistently wound, but its closed parts disagree: some are inside out (a part
+  // enclosing a negative volume and lying inside no other part; a cavity, inside another part,
+  // rightly encloses a negative one) and some are not, whatever the sign of the total
+  // (adjacency.h, closedPartWinding). insideOut is then false.
+  bool mixedWinding = false;
 
   Aabb bounds;  // object space
 };
