@@ -131,7 +131,29 @@ void classifyWinding(Mesh& mesh) {
     magnitude += std::abs(term);
   }
   mesh.enclosedVolume = sixTimes / 6.0;
+  mesh.mixedWinding = false;
   mesh.insideOut = mesh.topology == Topology::Closed && mesh.inconsistentEdges == 0 && sixTimes < -1e-9 * magnitude;
+  if (mesh.topology != Topology::Closed || mesh.inconsistentEdges != 0) return;
+  const ClosedPartWinding parts = closedPartWinding(mesh);
+  if (parts.insideOut > 0 && parts.insideOut < parts.parts) {
+    mesh.mixedWinding = true;
+    mesh.insideOut = false;
+  }
+}
+
+// Union-find over triangles, with path halving.
+uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t t) {
+  while (parent[t] != t) t = parent[t] = parent[parent[t]];
+  return t;
+}
+
+// The solid angle of triangle abc seen from the origin, signed by its winding
+// ([Van Oosterom & Strackee 1983]).
+double solidAngle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+  const double numerator = glm::dot(a, glm::cross(b, c));
+  const double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+  return 2.0 * std::atan2(numerator, denominator);
 }
 
 }  // namespace
@@ -338,6 +360,54 @@ void computeCreaseNormals(Mesh& mesh, double creaseDegrees) {
   }
   mesh.positions = std::move(positions);
   mesh.normals = std::move(normals);
+}
+
+ClosedPartWinding closedPartWinding(const Mesh& mesh) {
+  ClosedPartWinding result;
+  const size_t count = mesh.weldedTriangles.size();
+  if (count == 0) return result;
+  std::vector<uint32_t> parent(count);
+  for (uint32_t t = 0; t < count; ++t) parent[t] = t;
+  for (const Edge& e : mesh.edges)
+    if (e.t0 != kNoTriangle && e.t1 != kNoTriangle) parent[findRoot(parent, e.t0)] = findRoot(parent, e.t1);
+  // Per part (indexed by its root): six times its signed volume and the sum of the terms' sizes.
+  std::vector<uint32_t> part(count), index(count, kNoTriangle);  // index: root -> part
+  std::vector<double> sixTimes, magnitude;
+  std::vector<uint32_t> first;
+  const auto& P = mesh.weldedPositions;
+  for (uint32_t t = 0; t < count; ++t) {
+    uint32_t& p = index[findRoot(parent, t)];
+    if (p == kNoTriangle) {
+      p = uint32_t(sixTimes.size());
+      sixTimes.push_back(0.0), magnitude.push_back(0.0), first.push_back(t);
+    }
+    part[t] = p;
+    const glm::uvec3 w = mesh.weldedTriangles[t];
+    const double term = glm::dot(P[w.x], glm::cross(P[w.y], P[w.z]));
+    sixTimes[part[t]] += term;
+    magnitude[part[t]] += std::abs(term);
+  }
+  result.parts = sixTimes.size();
+  size_t tested = 0;
+  for (uint32_t p = 0; p < result.parts; ++p) {
+    if (!(sixTimes[p] < -1e-9 * magnitude[p])) continue;
+    if (tested++ >= kMaxEnclosureTests) {  // the rest are counted inside out, unseen
+      result.insideOut += 1;
+      continue;
+    }
+    const glm::uvec3 w = mesh.weldedTriangles[first[p]];
+    const glm::dvec3 x = (P[w.x] + P[w.y] + P[w.z]) / 3.0;
+    std::vector<double> angle(result.parts, 0.0);  // 4π · each other part's winding number at x
+    for (uint32_t t = 0; t < count; ++t) {
+      if (part[t] == p) continue;
+      const glm::uvec3 v = mesh.weldedTriangles[t];
+      angle[part[t]] += solidAngle(P[v.x] - x, P[v.y] - x, P[v.z] - x);
+    }
+    size_t enclosing = 0;
+    for (const double a : angle) enclosing += std::abs(a) > 2.0 * M_PI;
+    result.insideOut += enclosing % 2 == 0;
+  }
+  return result;
 }
 
 double signedVolume(const Mesh& mesh) {

@@ -38,4 +38,19 @@ void computeCreaseNormals(Mesh& mesh, double creaseDegrees = 40.0);
 // mesh is wound counter-clockwise seen from outside.
 double signedVolume(const Mesh& mesh);
 
+// The closed parts of a closed, consistently wound mesh (its triangles connected across edges)
+// and how many of them are inside out: enclosing a clearly negative signed volume while lying
+// inside an even number of the other parts (none, for a part on its own). A part inside an odd
+// number of others is a cavity, and a negative volume is its right winding. The enclosure is
+// the generalized winding number of the part's first triangle's centroid with respect to each
+// other part, |w| > 1/2 (the solid angles of [Van Oosterom & Strackee 1983]); it is computed for
+// the negative parts only, so a mesh without one costs a union-find over its edges; beyond the
+// first kMaxEnclosureTests negative parts (each test costs every triangle) the rest are counted as
+// inside out, which at worst casts a mesh of many cavities two-sided: right, if slower.
+inline constexpr size_t kMaxEnclosureTests = 64;
+struct ClosedPartWinding {
+  size_t parts = 0, insideOut = 0;
+};
+ClosedPartWinding closedPartWinding(const Mesh& mesh);
+
 }  // namespace shadowref

@@ -8,6 +8,7 @@
 //    did.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -25,6 +26,13 @@ struct Aabb {
   bool empty() const { return min.x > max.x; }
   void add(const glm::dvec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
   glm::dvec3 center() const { return (min + max) * 0.5; }
+  // The eight corners; bit 0 of the index picks max.x, bit 1 max.y, bit 2 max.z.
+  std::array<glm::dvec3, 8> corners() const {
+    std::array<glm::dvec3, 8> c;
+    for (size_t i = 0; i < 8; ++i)
+      c[i] = {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
+    return c;
+  }
 };
 
 inline constexpr uint32_t kNoTriangle = std::numeric_limits<uint32_t>::max();
@@ -68,6 +76,11 @@ struct Mesh {
   // Closed, consistently wound, and enclosing a clearly negative volume: every triangle is wound
   // clockwise seen from outside, so its face normals point inwards.
   bool insideOut = false;
+  // Closed and consistently wound, but its closed parts disagree: some are inside out (a part
+  // enclosing a negative volume and lying inside no other part; a cavity, inside another part,
+  // rightly encloses a negative one) and some are not, whatever the sign of the total
+  // (adjacency.h, closedPartWinding). insideOut is then false.
+  bool mixedWinding = false;
 
   Aabb bounds;  // object space
 };

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "scene/adjacency.h"
 #include "scene/scene_sections.h"
 
 namespace shadowref {
@@ -55,8 +56,14 @@ std::string winding(const Mesh& m) {
     return ", inconsistently wound (" + std::to_string(m.inconsistentEdges) +
            " edges whose two triangles run them the same way)";
   if (m.topology != Topology::Closed) return "";
+  std::string parts;
+  if (m.mixedWinding) {
+    const ClosedPartWinding w = closedPartWinding(m);
+    parts = " (partly inside out: " + std::to_string(w.insideOut) + " of its " + std::to_string(w.parts) +
+            " closed parts enclose a negative volume outside every other part)";
+  }
   return ", encloses volume " + num(m.enclosedVolume) +
-         (m.insideOut ? " (negative: inside out, every triangle wound clockwise seen from outside)" : "");
+         (m.insideOut ? " (negative: inside out, every triangle wound clockwise seen from outside)" : "") + parts;
 }
 
 std::string meshName(const Scene& scene, int index) {

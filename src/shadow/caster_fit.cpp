@@ -12,14 +12,6 @@ namespace shadowref {
 
 namespace {
 
-std::array<glm::dvec3, 8> boxCorners(const Aabb& box) {
-  std::array<glm::dvec3, 8> c;
-  for (int i = 0; i < 8; ++i)
-    c[size_t(i)] = {(i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y,
-                    (i & 4) ? box.max.z : box.min.z};
-  return c;
-}
-
 Aabb inflated(const Aabb& box, double by) { return Aabb{box.min - glm::dvec3(by), box.max + glm::dvec3(by)}; }
 
 // Light eye space bounds of points (x, y as they are; z negative in front of the light).
@@ -171,7 +163,7 @@ CasterFit fitDirectionalToCasters(const Light& light, const std::vector<Instance
   for (size_t i = 0; i < instances.size(); ++i) {
     const Instance& caster = instances[i];
     if (!caster.shadowMesh || caster.shadowBounds.empty() || !withinRange(light, caster.shadowBounds)) continue;
-    const std::array<glm::dvec3, 8> corners = boxCorners(caster.shadowBounds);
+    const std::array<glm::dvec3, 8> corners = caster.shadowBounds.corners();
     const Aabb casterEye = eyeBounds(V, corners.data(), corners.size());
     // Nothing to shadow outside the visible part's rectangle.
     if (casterEye.min.x > visibleEye.max.x || casterEye.max.x < visibleEye.min.x || casterEye.min.y > visibleEye.max.y ||
@@ -200,7 +192,7 @@ CasterFit fitDirectionalToCasters(const Light& light, const std::vector<Instance
   std::vector<glm::dvec2> footprint;
   footprint.reserve(8 * fit.casters.size());
   for (const size_t i : fit.casters)
-    for (const glm::dvec3& c : boxCorners(instances[i].shadowBounds)) footprint.emplace_back(V * glm::dvec4(c, 1.0));
+    for (const glm::dvec3& c : instances[i].shadowBounds.corners()) footprint.emplace_back(V * glm::dvec4(c, 1.0));
   fit.view.view = smallestRectangleTurn(convexHull(std::move(footprint))) * V;
   const glm::dmat4& turned = fit.view.view;
   const Aabb visibleTurned = eyeBounds(turned, visible.data(), visible.size());
@@ -208,7 +200,7 @@ CasterFit fitDirectionalToCasters(const Light& light, const std::vector<Instance
   // Each caster's footprint cut to the visible rectangle; z: the casters' depths.
   Aabb mapEye;
   for (const size_t i : fit.casters) {
-    const std::array<glm::dvec3, 8> corners = boxCorners(instances[i].shadowBounds);
+    const std::array<glm::dvec3, 8> corners = instances[i].shadowBounds.corners();
     const Aabb casterEye = eyeBounds(turned, corners.data(), corners.size());
     const glm::dvec2 lo = glm::max(glm::dvec2(casterEye.min), glm::dvec2(visibleTurned.min));
     const glm::dvec2 hi = glm::min(glm::dvec2(casterEye.max), glm::dvec2(visibleTurned.max));

@@ -9,14 +9,6 @@ namespace shadowref {
 
 namespace {
 
-std::array<glm::dvec3, 8> boxCorners(const Aabb& box) {
-  std::array<glm::dvec3, 8> c;
-  for (int i = 0; i < 8; ++i)
-    c[size_t(i)] = {(i & 1) ? box.max.x : box.min.x, (i & 2) ? box.max.y : box.min.y,
-                    (i & 4) ? box.max.z : box.min.z};
-  return c;
-}
-
 glm::dvec3 toEye(const glm::dmat4& view, const glm::dvec3& p) { return glm::dvec3(view * glm::dvec4(p, 1.0)); }
 
 // Light eye space looks down −z: the distance in front of the light is −z.
@@ -26,7 +18,7 @@ struct DepthRange {
 
 DepthRange depthRangeOf(const glm::dmat4& view, const Aabb& bounds) {
   DepthRange r;
-  for (const glm::dvec3& c : boxCorners(bounds)) {
+  for (const glm::dvec3& c : bounds.corners()) {
     const double d = -toEye(view, c).z;
     r.nearest = std::min(r.nearest, d);
     r.farthest = std::max(r.farthest, d);
@@ -50,7 +42,7 @@ LightView directionalLightView(const Light& light, const Aabb& bounds) {
   LightView v;
   v.view = lookAt(eye, centre, lightUpVector(d));
   glm::dvec3 lo(kInfinity), hi(-kInfinity);
-  for (const glm::dvec3& c : boxCorners(bounds)) {
+  for (const glm::dvec3& c : bounds.corners()) {
     const glm::dvec3 e = toEye(v.view, c);
     lo = glm::min(lo, e);
     hi = glm::max(hi, e);
@@ -126,7 +118,7 @@ glm::dvec3 cubeFaceUp(CubeFace face) {
 
 std::array<LightView, 6> pointLightCubeViews(const Light& light, const Aabb& bounds, double nearPlane) {
   double farthest = 0.0;
-  for (const glm::dvec3& c : boxCorners(bounds)) farthest = std::max(farthest, glm::length(c - light.position));
+  for (const glm::dvec3& c : bounds.corners()) farthest = std::max(farthest, glm::length(c - light.position));
   const double farPlane = std::max(farthest * (1.0 + kLightDepthMargin), 1e-6);
   const double near = nearPlane > 0.0 ? nearPlane : farPlane * kMinNearOverFar;
   std::array<LightView, 6> views;

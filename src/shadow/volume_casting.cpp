@@ -2,10 +2,13 @@
 
 #include <cstdio>
 
+#include "scene/adjacency.h"
+
 namespace shadowref {
 
 VolumeCasting volumeCastingOf(const Mesh& mesh) {
-  if (mesh.topology != Topology::Closed || mesh.inconsistentEdges > 0) return VolumeCasting::TwoSided;
+  if (mesh.topology != Topology::Closed || mesh.inconsistentEdges > 0 || mesh.mixedWinding)
+    return VolumeCasting::TwoSided;
   return mesh.insideOut ? VolumeCasting::Reversed : VolumeCasting::Silhouette;
 }
 
@@ -31,6 +34,11 @@ std::string castingWarning(const Mesh& mesh) {
   if (mesh.inconsistentEdges)
     add("inconsistently wound (" + to_string(mesh.inconsistentEdges) +
         " edges whose two triangles run them the same way)");
+  if (mesh.mixedWinding) {
+    const ClosedPartWinding parts = closedPartWinding(mesh);
+    add("partly inside out (" + to_string(parts.insideOut) + " of its " + to_string(parts.parts) +
+        " closed parts enclose a negative volume outside every other part)");
+  }
   return name + " is " + what +
          "; it casts its shadow as a two-sided surface: the shadow volumes close one volume per triangle, turned "
          "towards the light";

@@ -13,9 +13,11 @@
 //    volume). The winding is taken as reversed: the triangles whose INWARD normal faces the light
 //    are the front cap, turned round, and the volume is the silhouette volume of the mesh as it
 //    should have been wound.
-//  - TwoSided: open, non-manifold or inconsistently wound. There is no inside, so the mesh casts
-//    its shadow as a two-sided surface: a point is in shadow when the segment to the light meets
-//    any triangle, whichever way it faces. The volume is the union of one closed volume per
+//  - TwoSided: open, non-manifold or inconsistently wound, or closed with some of its closed parts
+//    inside out and others not (Mesh::mixedWinding: no one winding holds for the whole mesh, and
+//    a silhouette volume of an inside-out part left as it is misses its shadow). There is no
+//    inside to rely on, so the mesh casts its shadow as a two-sided surface: a point is in shadow
+//    when the segment to the light meets any triangle, whichever way it faces. The volume is the union of one closed volume per
 //    triangle ([Crow 1977]: a polygon's shadow volume; each triangle turned to face the light:
 //    the triangle as front cap, its three edges extruded, the triangle at infinity as back cap),
 //    counted with signs: where two such volumes share a side with opposite orientation the two

@@ -392,7 +392,7 @@ TEST_CASE("render warns once per open, non-manifold, inconsistently wound or ins
     for (size_t at = r.err.find(needle); at != std::string::npos; at = r.err.find(needle, at + 1)) ++n;
     return n;
   };
-  CHECK(lines("warning: ") == 4);
+  CHECK(lines("warning: ") == 5);
   CHECK(lines("warning: mesh 'triangle' is open (3 edges with one triangle); it casts its shadow as a two-sided "
               "surface") == 1);
   CHECK(lines("warning: mesh 'fins' is open (6 edges with one triangle), non-manifold (1 edges with three or more "
@@ -401,6 +401,8 @@ TEST_CASE("render warns once per open, non-manifold, inconsistently wound or ins
   CHECK(lines("the shadow volumes take its winding as reversed") == 1);
   CHECK(lines("warning: mesh 'flipped_face_cube' is inconsistently wound (4 edges whose two triangles run them the "
               "same way)") == 1);
+  CHECK(lines("warning: mesh 'mixed_cubes' is partly inside out (1 of its 2 closed parts enclose a negative volume "
+              "outside every other part); it casts its shadow as a two-sided surface") == 1);
   // The tent under two lights: one warning, not one per light.
   const CliRun tent = runShadowref("render scenes/tent.yaml -D image.width=64 -D image.height=48 -o '" + png + "'");
   CHECK(tent.status == 0);
@@ -424,6 +426,10 @@ TEST_CASE("info reports an inside-out closed mesh by the sign of the volume it e
         std::string::npos);
   CHECK(r.out.find("triangle: 1 triangles, 3 welded vertices, 3 edges, open (3 open, 0 non-manifold edges), bounds") !=
         std::string::npos);
+  // 0.8³ − 0.5³ = 0.387: positive, yet one of its two cubes is wound inside out.
+  CHECK(r.out.find("mixed_cubes: 24 triangles, 16 welded vertices, 36 edges, closed (0 open, 0 non-manifold edges), "
+                   "encloses volume 0.387 (partly inside out: 1 of its 2 closed parts enclose a negative volume "
+                   "outside every other part)") != std::string::npos);
   // A unit cube wound the right way encloses +1 and is not called inside out.
   const CliRun minimal = runShadowref("info scenes/minimal.yaml");
   CHECK(minimal.out.find("inside out") == std::string::npos);

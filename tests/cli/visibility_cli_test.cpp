@@ -4,51 +4,22 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
 
 #include <OpenImageIO/imageio.h>
 
+#include "support/cli_run.h"
+
 namespace fs = std::filesystem;
+using shadowref::testing::CliRun;
+using shadowref::testing::runShadowref;
+using shadowref::testing::testScratch;
 
 namespace {
-
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
-
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("shadowref-visibility-cli-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Run shadowref(const std::string& args) {
-  const fs::path dir = scratch();
-  const std::string cmd = std::string("cd '") + SHADOWREF_SOURCE_DIR + "' && '" + SHADOWREF_CLI + "' " + args + " >'" +
-                          (dir / "out.txt").string() + "' 2>'" + (dir / "err.txt").string() + "'";
-  const int raw = std::system(cmd.c_str());
-  Run r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(dir / "out.txt");
-  r.err = slurp(dir / "err.txt");
-  return r;
-}
 
 // The box over a plane of tests/shadow/visibility_test.cpp, with a second light.
 const std::string kScene =
@@ -62,7 +33,7 @@ const std::string kScene =
     "shadow: {method: zfail}\n";
 
 std::string sceneFile() {
-  const fs::path p = scratch() / "box.yaml";
+  const fs::path p = testScratch() / "box.yaml";
   std::ofstream(p) << kScene;
   return p.string();
 }
@@ -103,13 +74,13 @@ float channelAt(const Read& r, const std::string& name, int x, int y) {
 }  // namespace
 
 TEST_CASE("render --dump visibility: EXR channels per light, named in the metadata, and PNG views", "[cli][visibility]") {
-  const fs::path dir = scratch() / "vis";
+  const fs::path dir = testScratch() / "vis";
   fs::remove_all(dir);
   const std::string scene = sceneFile();
   for (const char* method : {"zpass", "shadowmap"}) {
     INFO(method);
     const std::string exr = (dir / method / "f.exr").string();
-    const Run r = shadowref("render '" + scene + "' --method " + method + " --dump visibility --quiet -o '" + exr + "'");
+    const CliRun r = runShadowref("render '" + scene + "' --method " + method + " --dump visibility --quiet -o '" + exr + "'");
     INFO(r.err);
     REQUIRE(r.status == 0);
     const Read frame = readImage(exr);
@@ -136,14 +107,14 @@ TEST_CASE("render --dump visibility: EXR channels per light, named in the metada
 
 TEST_CASE("render -D lights.NAME=off renders the scene without that light", "[cli][visibility]") {
   const std::string scene = sceneFile();
-  const fs::path dir = scratch();
+  const fs::path dir = testScratch();
   std::string one = kScene;
   one.erase(one.find("  - {name: top"), one.find("meshes:") - one.find("  - {name: top"));
   const fs::path oneFile = dir / "one.yaml";
   std::ofstream(oneFile) << one;
   const std::string a = (dir / "removed.exr").string(), b = (dir / "one.exr").string();
-  REQUIRE(shadowref("render '" + scene + "' -D lights.top=off --dump visibility --quiet -o '" + a + "'").status == 0);
-  REQUIRE(shadowref("render '" + oneFile.string() + "' --dump visibility --quiet -o '" + b + "'").status == 0);
+  REQUIRE(runShadowref("render '" + scene + "' -D lights.top=off --dump visibility --quiet -o '" + a + "'").status == 0);
+  REQUIRE(runShadowref("render '" + oneFile.string() + "' --dump visibility --quiet -o '" + b + "'").status == 0);
   const Read ra = readImage(a), rb = readImage(b);
   CHECK(ra.channels == rb.channels);  // R, G, B, A, Z, stencil, visibility.L0: one light
   CHECK(ra.pixels == rb.pixels);
@@ -152,36 +123,36 @@ TEST_CASE("render -D lights.NAME=off renders the scene without that light", "[cl
 
 TEST_CASE("render and check with -D naming an unknown light or node exit 2 with the place on the command line", "[cli][visibility]") {
   const std::string scene = sceneFile();
-  const fs::path out = scratch() / "never.png";
-  Run r = shadowref("render '" + scene + "' -D lights.son=off -o '" + out.string() + "'");
+  const fs::path out = testScratch() / "never.png";
+  CliRun r = runShadowref("render '" + scene + "' -D lights.son=off -o '" + out.string() + "'");
   CHECK(r.status == 2);
   CHECK(r.err == "<command line>:1:8: lights.son: no light named 'son'; did you mean 'sun'?\n");
-  r = shadowref("check '" + scene + "' -D camera.fov=40 -D nodes.bx.cast_shadows=false");
+  r = runShadowref("check '" + scene + "' -D camera.fov=40 -D nodes.bx.cast_shadows=false");
   CHECK(r.status == 2);
   CHECK(r.err == "<command line>:2:7: nodes.bx: no node with the path 'bx'; did you mean 'box'?\n");
   CHECK_FALSE(fs::exists(out));
 }
 
 TEST_CASE("render -o into folders that do not exist makes them, and a failed write leaves none behind", "[cli][visibility]") {
-  const fs::path dir = scratch() / "folders";
+  const fs::path dir = testScratch() / "folders";
   fs::remove_all(dir);
   fs::create_directories(dir);
   const std::string scene = sceneFile();
   const fs::path nested = dir / "a" / "b" / "f.png";
-  Run r = shadowref("render '" + scene + "' --quiet -o '" + nested.string() + "'");
+  CliRun r = runShadowref("render '" + scene + "' --quiet -o '" + nested.string() + "'");
   CHECK(r.status == 0);
   CHECK(fs::is_regular_file(nested));
 
   // A part of the path is a file: refused before rendering (exit 2), nothing made.
   std::ofstream(dir / "file") << "x";
-  r = shadowref("render '" + scene + "' --quiet -o '" + (dir / "file" / "c" / "f.png").string() + "'");
+  r = runShadowref("render '" + scene + "' --quiet -o '" + (dir / "file" / "c" / "f.png").string() + "'");
   CHECK(r.status == 2);
   CHECK(r.err.find("is not a folder") != std::string::npos);
 
   // The folders are made, then the file cannot be (its name is longer than any file system allows):
   // the render fails and takes away the folders it made.
   const std::string tooLong((dir / "new" / "deeper" / (std::string(300, 'n') + ".png")).string());
-  r = shadowref("render '" + scene + "' --quiet -o '" + tooLong + "'");
+  r = runShadowref("render '" + scene + "' --quiet -o '" + tooLong + "'");
   CHECK(r.status == 1);
   CHECK_FALSE(fs::exists(dir / "new"));
   std::vector<std::string> left;
@@ -191,7 +162,7 @@ TEST_CASE("render -o into folders that do not exist makes them, and a failed wri
 }
 
 TEST_CASE("render --help names the visibility dump", "[cli][visibility]") {
-  const Run r = shadowref("render --help");
+  const CliRun r = runShadowref("render --help");
   CHECK(r.status == 0);
   CHECK(r.out.find("'visibility'") != std::string::npos);
 }

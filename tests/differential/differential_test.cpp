@@ -529,7 +529,8 @@ void checkStream(uint64_t seed) { checkStream(makeStream(seed)); }
 
 // The meshes users write that are not closed outward solids (shadow/volume_casting.h): an open
 // tent (no floor, front open), a lone triangle, three fins on one edge (non-manifold), a cube
-// wound inside out, a cube with one face reversed.
+// wound inside out, a cube with one face reversed, and a cube wound outwards with a half-size
+// cube wound inside out beside it in the same mesh (closed, total volume positive).
 std::vector<Mesh> irregularMeshes() {
   auto mesh = [](std::vector<glm::dvec3> p, std::vector<glm::uvec3> t) {
     Mesh m;
@@ -544,6 +545,11 @@ std::vector<Mesh> irregularMeshes() {
   // Clockwise seen from outside; the second cube has its top (3 7 8 4 in OBJ terms) the right way.
   const std::vector<glm::uvec3> insideOut{{0, 1, 2}, {0, 2, 3}, {7, 6, 5}, {7, 5, 4}, {4, 5, 1}, {4, 1, 0},
                                           {2, 6, 7}, {2, 7, 3}, {3, 7, 4}, {3, 4, 0}, {5, 6, 2}, {5, 2, 1}};
+  std::vector<glm::dvec3> mixed = cube;
+  std::vector<glm::uvec3> mixedTriangles;
+  for (const glm::uvec3& t : insideOut) mixedTriangles.push_back({t.x, t.z, t.y});  // outward
+  for (const glm::dvec3& p : cube) mixed.push_back(p * 0.5 + glm::dvec3(1.0, -0.25, 0.0));
+  for (const glm::uvec3& t : insideOut) mixedTriangles.push_back(t + glm::uvec3(8));
   std::vector<glm::uvec3> flipped = insideOut;
   for (size_t t = 0; t < flipped.size(); ++t)
     if (t != 6 && t != 7) std::swap(flipped[t].y, flipped[t].z);
@@ -551,7 +557,7 @@ std::vector<Mesh> irregularMeshes() {
                {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {4, 3, 2}}),
           mesh({{-0.6, 0, 0}, {0.6, 0, 0}, {0, 0.9, 0}}, {{0, 1, 2}}),
           mesh({{0, 0, 0}, {0, 1, 0}, {0.6, 0.5, 0}, {-0.3, 0.5, 0.52}, {-0.3, 0.5, -0.52}}, {{0, 2, 1}, {0, 3, 1}, {0, 4, 1}}),
-          mesh(cube, insideOut), mesh(cube, flipped)};
+          mesh(cube, insideOut), mesh(cube, flipped), mesh(mixed, mixedTriangles)};
 }
 
 // A shadow-volume frame over one of those meshes and a ground quad, as volume_renderer.cpp draws

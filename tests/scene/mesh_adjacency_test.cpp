@@ -1,6 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <tuple>
+#include <vector>
+
 #include "scene/adjacency.h"
+#include "scene/primitives.h"
 #include "mesh_checks.h"
 
 using namespace shadowref;
@@ -225,4 +229,71 @@ TEST_CASE("neither an open nor an inconsistently wound mesh, nor a closed one en
   CHECK(sheet.topology == Topology::Closed);
   CHECK(sheet.inconsistentEdges == 0);
   CHECK_FALSE(sheet.insideOut);
+}
+
+TEST_CASE("a box's eight corners: bit 0 of the index picks max.x, bit 1 max.y, bit 2 max.z", "[mesh]") {
+  const Aabb box{{-1.0, 2.0, 3.0}, {4.0, 5.0, 7.5}};
+  const std::array<glm::dvec3, 8> c = box.corners();
+  CHECK(c[0] == glm::dvec3(-1.0, 2.0, 3.0));
+  CHECK(c[1] == glm::dvec3(4.0, 2.0, 3.0));
+  CHECK(c[2] == glm::dvec3(-1.0, 5.0, 3.0));
+  CHECK(c[3] == glm::dvec3(4.0, 5.0, 3.0));
+  CHECK(c[4] == glm::dvec3(-1.0, 2.0, 7.5));
+  CHECK(c[7] == glm::dvec3(4.0, 5.0, 7.5));
+  // Every corner lies in the box, and together they span it.
+  Aabb spanned;
+  for (const glm::dvec3& p : c) spanned.add(p);
+  CHECK(spanned.min == box.min);
+  CHECK(spanned.max == box.max);
+}
+
+namespace {
+
+// The boxes (min, max, wound outwards?) as one mesh, adjacency built.
+Mesh boxes(std::vector<std::tuple<glm::dvec3, glm::dvec3, bool>> list) {
+  Mesh all;
+  all.name = "boxes";
+  for (const auto& [lo, hi, outward] : list) {
+    const Mesh b = makeBoxBetween(lo, hi);
+    const uint32_t base = uint32_t(all.positions.size());
+    all.positions.insert(all.positions.end(), b.positions.begin(), b.positions.end());
+    all.normals.insert(all.normals.end(), b.normals.begin(), b.normals.end());
+    for (const glm::uvec3& t : b.triangles)
+      all.triangles.push_back(outward ? t + glm::uvec3(base) : glm::uvec3(t.x, t.z, t.y) + glm::uvec3(base));
+  }
+  buildAdjacency(all);
+  return all;
+}
+
+}  // namespace
+
+TEST_CASE("closed parts: an inside-out part beside an outward one is mixed winding, a cavity is not", "[mesh]") {
+  // Two outward boxes: two parts, neither inside out.
+  const Mesh two = boxes({{{0, 0, 0}, {1, 1, 1}, true}, {{2, 0, 0}, {3, 1, 1}, true}});
+  CHECK(closedPartWinding(two).parts == 2);
+  CHECK(closedPartWinding(two).insideOut == 0);
+  CHECK_FALSE(two.mixedWinding);
+  // A 2 m box and, beside it, a unit box wound inside out: 8 − 1 = 7 m³, positive, yet one part
+  // is inside out.
+  const Mesh mixed = boxes({{{0, 0, 0}, {2, 2, 2}, true}, {{3, 0, 0}, {4, 1, 1}, false}});
+  CHECK(mixed.enclosedVolume == Approx(7.0));
+  CHECK(closedPartWinding(mixed).parts == 2);
+  CHECK(closedPartWinding(mixed).insideOut == 1);
+  CHECK(mixed.mixedWinding);
+  CHECK_FALSE(mixed.insideOut);
+  // The same the other way round (total −8 + 1): still mixed, not inside out as a whole.
+  const Mesh mostlyInsideOut = boxes({{{0, 0, 0}, {2, 2, 2}, false}, {{3, 0, 0}, {4, 1, 1}, true}});
+  CHECK(mostlyInsideOut.mixedWinding);
+  CHECK_FALSE(mostlyInsideOut.insideOut);
+  // A hollow box: the inner surface wound inwards is a cavity (inside the outer part), its
+  // negative volume right: 8 − 1 = 7 m³, not mixed.
+  const Mesh hollow = boxes({{{0, 0, 0}, {2, 2, 2}, true}, {{0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, false}});
+  CHECK(hollow.enclosedVolume == Approx(7.0));
+  CHECK(closedPartWinding(hollow).insideOut == 0);
+  CHECK_FALSE(hollow.mixedWinding);
+  // One box wound inside out is inside out as a whole, not mixed.
+  const Mesh reversed = boxes({{{0, 0, 0}, {1, 1, 1}, false}});
+  CHECK(closedPartWinding(reversed).insideOut == 1);
+  CHECK(reversed.insideOut);
+  CHECK_FALSE(reversed.mixedWinding);
 }

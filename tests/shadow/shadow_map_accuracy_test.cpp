@@ -11,11 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene_loader.h"
-#include "shadow/light_shadow.h"
-#include "shadow/scene_view.h"
 #include "shadow/shadow_map_accuracy.h"
 #include "oracle/oracle.h"
+#include "support/scene_oracle.h"
 
 using namespace shadowref;
 
@@ -23,16 +21,13 @@ namespace {
 
 // AddressSanitizer (CI runs the suite under it too) is ~20x slower: a smaller image.
 #if defined(__SANITIZE_ADDRESS__)
-const std::vector<std::string> kImageSize = {"image.width=200", "image.height=160"};
+constexpr int kWidth = 200, kHeight = 160;
 #else
-const std::vector<std::string> kImageSize = {"image.width=400", "image.height=320"};
+constexpr int kWidth = 400, kHeight = 320;
 #endif
 
-Scene loadWith(const std::string& name, std::vector<std::string> overrides) {
-  LoadOptions options;
-  options.overrides = kImageSize;
-  options.overrides.insert(options.overrides.end(), overrides.begin(), overrides.end());
-  return loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/scenes/" + name + ".yaml", options);
+Scene loadWith(const std::string& name, const std::vector<std::string>& overrides) {
+  return testing::sceneAtSize(name + ".yaml", kWidth, kHeight, overrides);
 }
 
 struct Measurement {
@@ -46,10 +41,7 @@ struct Measurement {
     all.insert(all.end(), extra.begin(), extra.end());
     all.push_back("shadow.map_size=" + std::to_string(size));
     const Scene s = loadWith(scene, all);
-    RasterStats stats;
-    Framebuffer frame(1, 1);  // the maps' pipelines are made like this one: on every core
-    const auto shadow = buildLightShadow(s, s.instances(), makeCameraView(s), s.lights.at(0), trapezoidal,
-                                         *makePipeline(PipelineKind::Fast, frame, 0), stats);
+    const auto shadow = testing::firstLightShadow(s, trapezoidal);
     const ShadowMapErrors e = countShadowErrors(*shadow, oracle->hitPoint, oracle->lit, oracle->hitMask);
     REQUIRE(e.points > 10000);
     return 100.0 * e.wrongFraction();

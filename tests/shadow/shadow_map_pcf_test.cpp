@@ -18,21 +18,20 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene_loader.h"
 #include "shadow/light_shadow.h"
 #include "shadow/scene_passes.h"
-#include "shadow/scene_view.h"
 #include "oracle/oracle.h"
 #include "oracle/triangle_bvh.h"
+#include "support/scene_oracle.h"
 
 using namespace shadowref;
 
 namespace {
 
 #if defined(__SANITIZE_ADDRESS__)
-const std::vector<std::string> kImageSize = {"image.width=160", "image.height=128"};
+constexpr int kWidth = 160, kHeight = 128;
 #else
-const std::vector<std::string> kImageSize = {"image.width=320", "image.height=256"};
+constexpr int kWidth = 320, kHeight = 256;
 #endif
 
 struct PcfCase {
@@ -41,11 +40,9 @@ struct PcfCase {
 };
 
 Scene load(const PcfCase& c, int pcf) {
-  LoadOptions options;
-  options.overrides = kImageSize;
-  options.overrides.insert(options.overrides.end(), c.overrides.begin(), c.overrides.end());
-  options.overrides.push_back("shadow.pcf=" + std::to_string(pcf));
-  return loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/scenes/" + c.file + ".yaml", options);
+  std::vector<std::string> overrides = c.overrides;
+  overrides.push_back("shadow.pcf=" + std::to_string(pcf));
+  return testing::sceneAtSize(c.file + ".yaml", kWidth, kHeight, overrides);
 }
 
 // Every caster's triangles in world space, as the map pass draws them.
@@ -63,12 +60,7 @@ oracle::TriangleBvh casterBvh(const std::vector<Instance>& instances, const Ligh
   return oracle::TriangleBvh(std::move(triangles));
 }
 
-std::unique_ptr<LightShadow> shadowOf(const Scene& s) {
-  RasterStats stats;
-  Framebuffer frame(1, 1);
-  return buildLightShadow(s, s.instances(), makeCameraView(s), s.lights.at(0), s.shadow.method == "tsm",
-                          *makePipeline(PipelineKind::Fast, frame, 0), stats);
-}
+std::unique_ptr<LightShadow> shadowOf(const Scene& s) { return testing::firstLightShadow(s, s.shadow.method == "tsm"); }
 
 }  // namespace
 

@@ -15,16 +15,17 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/occlusion_pyramid.h"
 #include "shadow/scene_passes.h"
 #include "shadow/scene_view.h"
-#include "shadow/soft_lights.h"
 #include "oracle/oracle.h"
+#include "support/scene_oracle.h"
 
 using namespace shadowref;
 using oracle::OracleImage;
+using testing::drawnLights;
+using testing::renderWithStencil;
 
 namespace {
 
@@ -36,31 +37,7 @@ constexpr int kWidth = 200, kHeight = 160;
 #endif
 
 Scene documentScene(const std::string& name, std::vector<std::string> overrides = {}) {
-  LoadOptions options;
-  options.overrides = {"image.width=" + std::to_string(kWidth), "image.height=" + std::to_string(kHeight)};
-  options.overrides.insert(options.overrides.end(), overrides.begin(), overrides.end());
-  return loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/scenes/" + name + ".yaml", options);
-}
-
-// The lights the volume renderer draws, soft lights expanded, in its order ("L0", "L1", ...).
-std::vector<Light> drawnLights(const Scene& scene) {
-  std::vector<Light> lights;
-  for (const Light& light : scene.lights)
-    for (const Light& l : expandSoftLight(light)) lights.push_back(l);
-  return lights;
-}
-
-FrameResult renderWithStencil(const Scene& scene, std::string_view method) {
-  FrameOptions options;
-  options.method = method;
-  options.keepStencil = true;
-  return renderFrame(scene, options);
-}
-
-OracleImage castFor(const Scene& scene, const Light& light) {
-  oracle::OracleOptions options;
-  options.forceInfiniteProjection = true;  // the volume renderer draws with P_inf ([Kuhn 2016, §3.3])
-  return castOracle(scene, light, options);
+  return testing::sceneAtSize(name + ".yaml", kWidth, kHeight, overrides);
 }
 
 // An 8-bit wrapping stencil holds a count modulo 256 (INCR_WRAP / DECR_WRAP, [SV slides]).
@@ -111,7 +88,7 @@ TEST_CASE("z-fail: the stencil after each light's volume pass equals the oracle'
     const std::vector<Light> lights = drawnLights(scene);
     REQUIRE(frame.stencilPerLight.size() == lights.size());
     for (size_t l = 0; l < lights.size(); ++l) {
-      const OracleImage img = castFor(scene, lights[l]);
+      const OracleImage img = testing::castVolumeOracle(scene, lights[l]);
       const CountCheck c = compareCounts(frame.stencilPerLight[l], img, img.zfail);
       INFO(name << " light " << l << ": compared " << c.compared << ", shadowed " << c.nonZero << "; "
                 << c.firstMismatch);
@@ -130,7 +107,7 @@ TEST_CASE("z-pass: the stencil equals the oracle's z-pass count (near plane to h
     const std::vector<Light> lights = drawnLights(scene);
     REQUIRE(frame.stencilPerLight.size() == lights.size());
     for (size_t l = 0; l < lights.size(); ++l) {
-      const OracleImage img = castFor(scene, lights[l]);
+      const OracleImage img = testing::castVolumeOracle(scene, lights[l]);
       const CountCheck c = compareCounts(frame.stencilPerLight[l], img, img.zpass);
       INFO(name << " light " << l << ": compared " << c.compared << "; " << c.firstMismatch);
       CHECK(c.compared > size_t(kWidth * kHeight) / 2);
@@ -154,7 +131,7 @@ TEST_CASE("z-fail shadow mask (stencil == 0 is lit) agrees with ray-traced light
     const std::vector<Light> lights = drawnLights(scene);
     REQUIRE(frame.stencilPerLight.size() == lights.size());
     for (size_t l = 0; l < lights.size(); ++l) {
-      const OracleImage img = castFor(scene, lights[l]);
+      const OracleImage img = testing::castVolumeOracle(scene, lights[l]);
       size_t hits = 0, disagree = 0, shadowed = 0;
       for (size_t i = 0; i < img.lit.size(); ++i) {
         if (!img.hitMask[i]) continue;  // background: no surface to light
@@ -243,7 +220,7 @@ TEST_CASE("pumpkins with z-pass: the camera inside the hollow pumpkin's volume m
   const FrameResult zpass = renderWithStencil(scene, "zpass");
   const FrameResult zfail = renderWithStencil(scene, "zfail");
   REQUIRE(zpass.stencilPerLight.size() == 1);
-  const OracleImage img = castFor(scene, scene.lights[0]);
+  const OracleImage img = testing::castVolumeOracle(scene, scene.lights[0]);
   const auto& p = zpass.stencilPerLight[0];
   const auto& f = zfail.stencilPerLight[0];
 
