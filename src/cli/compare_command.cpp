@@ -142,15 +142,17 @@ int runCompare(const CompareArgs& args) {
     bool differs = false;
     for (const ChannelStats& s : result.channels) differs = differs || s.maxAbsDiff > 0.0;
     if (differs || !args.diffOnlyIfDifferent) {
+      std::vector<std::string> made;
       try {
         DifferenceMapOptions options;
         options.channel = args.diffChannel;
         options.integerModulo = args.modulo;
         const std::vector<double> diffs = differenceMap(a, b, options);
-        ensureParentDirectory(args.diff);
+        ensureParentDirectory(args.diff, &made);
         writePng8(differenceHeatMap(diffs, a.width, a.height, args.diffScale), args.diff);
         if (!args.json) std::cout << "difference picture: " << args.diff << '\n';
       } catch (const std::exception& e) {
+        removeEmptyFolders(made);  // the picture is written whole or not at all; so are its folders
         std::cerr << "--diff: " << e.what() << '\n';
         return kCompareBadInput;
       }
