@@ -37,8 +37,8 @@ std::vector<double> differenceMap(const ChannelImage& a, const ChannelImage& b, 
 std::array<uint8_t, 3> heatColour(double t) {
   if (std::isinf(t)) return {255, 0, 255};
   if (!(t > 0.0)) return {0, 0, 0};
-  // Piecewise linear between stops; brightness rises along the ramp, so a larger difference is
-  // never drawn darker than a smaller one.
+  // Piecewise linear between stops whose luma rises (25, 57, 92, 176, 255 in Rec. 601 weights),
+  // so a clearly larger difference is never drawn darker than a smaller one.
   struct Stop {
     double t;
     double r, g, b;
