@@ -3,8 +3,9 @@
 // (AVX2 where the machine has it) and in the sanitizer build (built for any x86-64, SSE2), so
 // both vector widths of the span and lighting loops must give the same bytes — and the same as
 // when the hashes were written. After an intended change of the output, scripts/update-goldens.sh
-// rewrites the file (SHADOWREF_UPDATE_GOLDENS=1) from the reference pipeline's frames; the fast
-// executor at two threads must give the same hashes.
+// --write rewrites the file (SHADOWREF_UPDATE_GOLDENS=1) from the reference pipeline's frames; the
+// fast executor at two threads must give the same hashes. A mismatch writes a failure report
+// (support/golden_report.h) with both pipelines' frames.
 #include <catch2/catch.hpp>
 
 #include <cstdint>

@@ -16,7 +16,8 @@ GoldenOutcome checkGoldenExr(const std::string& name, const Framebuffer& fb, con
                              const std::string& goldenPath, const std::string& folder) {
   GoldenOutcome outcome;
   if (!std::filesystem::exists(goldenPath)) {
-    outcome.message = "missing golden " + goldenPath + ": run scripts/update-goldens.sh after checking the change is intended";
+    outcome.message = "missing golden " + goldenPath +
+                      ": run scripts/update-goldens.sh --write after checking the change is intended";
     return outcome;
   }
   const ChannelImage reference = readChannelImage(goldenPath);
