@@ -1,5 +1,5 @@
 // bench/shadow_map_accuracy: how many pixels a shadow map gets
-// wrong, against the ray-traced light visibility of the oracle (support/oracle), for
+// wrong, against the ray-traced light visibility of the oracle (src/oracle), for
 // standard and trapezoidal maps at 128 … 4096 texels and each anti-self-shadowing choice.
 //
 // Per scene the oracle casts one primary ray per pixel and a shadow ray from its hit to the light.

@@ -58,7 +58,7 @@ libs_of() {
     render_values) echo shadow scene pipeline ;;
     image_compare) echo image pipeline ;;
     differential) echo pipeline ;;
-    cli) echo cli shadow scene image pipeline ;;
+    cli) echo cli oracle shadow scene image pipeline ;;
     *) echo "fuzz/run.sh: unknown target '$1' (targets: ${all_targets[*]})" >&2; return 1 ;;
   esac
 }

@@ -10,7 +10,7 @@ namespace shadowref::bench {
 
 // What the renderer's shadow is compared with.
 enum class Reference {
-  HardLight,   // the light as a point: the oracle's shadow ray per pixel (support/oracle)
+  HardLight,   // the light as a point: the oracle's shadow ray per pixel (src/oracle)
   AreaSquare,  // the square [-s, s]^2 around the light in its horizontal plane (square_y's span)
   AreaSphere,  // the sphere of radius s around the light (sphere14's points lie on it)
 };

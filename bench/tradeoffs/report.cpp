@@ -349,7 +349,7 @@ void writeMarkdown(const std::string& path, const RunInfo& info, const std::vect
          "libraries, the loaded scene and every buffer and shadow map (not `getrusage`'s `ru_maxrss`, which Linux "
          "carries over from the forking parent). A child that loads nothing peaks at "
       << mib(info.baselineRssKiB) << " MiB; subtract that for the configuration's own share.\n"
-      << "- **Ground truth, hard shadows**: the ray-casting oracle (`support/oracle`, independent of "
+      << "- **Ground truth, hard shadows**: the ray-casting oracle (`src/oracle`, independent of "
          "the rasterizer): per pixel the first hit of the primary ray and a shadow ray to the light (`lit`). For "
          "shadow volumes the oracle's camera uses P_inf as the volume renderer does.\n"
       << "- **Ground truth, soft shadows**: " << info.referenceSamples

@@ -18,7 +18,7 @@ glm::dvec3 toWorld(const glm::dmat4& world, const glm::dvec3& p) {
 }
 
 // The shadow-casting triangles in world space, and the scene's size for the ray offset — the same
-// gathering as the oracle's (support/oracle/oracle.cpp), which keeps it private.
+// gathering as the oracle's (src/oracle/oracle.cpp), which keeps it private.
 struct Casters {
   oracle::TriangleBvh bvh;
   double scale = 1.0;

@@ -18,7 +18,8 @@ void addCommands(CLI::App& app, CommandArgs& args) {
   addInfoCommand(app, args.info);
   addCompareCommand(app, args.compare);
   addBenchCommand(app, args.bench);
-  app.footer("Exit status: 0 success, 1 a failed render or comparison, 2 bad usage or bad input;\n"
+  app.footer("Exit status: 0 success, 1 a failed render, 2 bad usage or bad input; compare has idiff's:\n"
+             "0 PASS, 1 WARNING, 2 FAILURE, 3 sizes or channels differ, 4 bad input;\n"
              "130 / 143 after SIGINT / SIGTERM, which remove any half-written temporary file.");
 }
 
@@ -34,7 +35,7 @@ std::optional<int> parseCommandLine(CLI::App& app, int argc, const char* const* 
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
-    return kBadInput;
+    return badUsageExit(argc, argv);
   }
   return std::nullopt;
 }

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/oracle_output.h"
 #include "cli/render_metadata.h"
 #include "image/image_writer.h"
 #include "image/stencil_view.h"
@@ -148,6 +149,9 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
                      "and EXR with the Z channel), 'visibility' (per scene light: grey PNG, 1 lit white, 0 in shadow "
                      "black, and visibility.L<i> EXR channels, for every method)")
       ->check(CLI::IsMember({"passes", "stencil", "depth", "shadowmap", "visibility"}));
+  render->add_flag("--oracle", args.oracle,
+                   "Per light: the ray-traced visibility (OUT.oracle-L<i>.png) and an error map of the rendered one "
+                   "against it (OUT.oracle-errors-L<i>.png); prints agreement and where they differ");
   render->add_option("--dump-region", args.dumpRegion, "x,y,w,h: print the stencil counts of that region per light "
                                                        "(row 0 is the bottom)");
   render->add_option("--view", args.view,
@@ -236,7 +240,7 @@ int runRender(const RenderArgs& args) {
       return kBadInput;
     }
   }
-  options.keepVisibility = wants(args.dumps, "visibility");
+  options.keepVisibility = wants(args.dumps, "visibility") || args.oracle;
   if (options.keepVisibility) {
     const std::optional<uint64_t> values = checkedMul(
         checkedMul(uint64_t(scene->width), uint64_t(scene->height)).value_or(UINT64_MAX), uint64_t(scene->lights.size()));
@@ -342,6 +346,11 @@ int runRender(const RenderArgs& args) {
       writeExr(holder, exr, z, showing("shadow map " + frame.shadowMapNames[i]));
       passFiles.push_back(png);
       passFiles.push_back(exr);
+    }
+    if (args.oracle) {
+      const std::string method = options.method.empty() ? std::string(techniqueOf(scene->shadow).name) : options.method;
+      writeOracleOutputs(*scene, method, frame, [&](const std::string& s) { return siblingPath(outputs.front(), s); },
+                         passFiles, std::cout);
     }
     if (wants(args.dumps, "shadowmap") && frame.shadowMaps.empty() && !args.quiet)
       std::cerr << "--dump shadowmap: this method renders no shadow map\n";

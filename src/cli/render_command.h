@@ -25,6 +25,7 @@ struct RenderArgs {
   std::string view;                  // volumes, volumes-overlay
   std::string pixelHistory;          // "x,y"
   std::string exrCompression = "rle";  // none, rle, zip
+  bool oracle = false;               // per light: the ray-traced visibility and an error map
 };
 
 void addRenderCommand(CLI::App& app, RenderArgs& args);

@@ -21,6 +21,8 @@ bool glyphFor(char c, Glyph& g) {
     case '9': g = {0b111, 0b101, 0b111, 0b001, 0b111}; return true;
     case '+': g = {0b000, 0b010, 0b111, 0b010, 0b000}; return true;
     case '-': g = {0b000, 0b000, 0b111, 0b000, 0b000}; return true;
+    case '.': g = {0b000, 0b000, 0b000, 0b000, 0b010}; return true;
+    case 'e': g = {0b000, 0b111, 0b111, 0b100, 0b111}; return true;
     default: return false;
   }
 }

@@ -106,6 +106,7 @@ ChannelImage channelImageOf(const Framebuffer& fb, const ExrExtras& extras) {
       }
     image.names.push_back(channel.name);
     image.data.push_back(std::move(values));
+    image.integer.push_back(channel.kind == ChannelKind::UInt32);
   }
   return image;
 }

@@ -18,8 +18,12 @@ struct ChannelImage {
   std::vector<std::string> names;
   // data[c][y * width + x]: channel c of pixel (x, y), y counted from the TOP (file order).
   std::vector<std::vector<double>> data;
+  // integer[c]: channel c holds 32-bit integers (counts such as stencil), not normalised colour or
+  // floats. Empty means none does.
+  std::vector<bool> integer;
 
   int channelIndex(const std::string& name) const;  // -1 if absent
+  bool isInteger(size_t c) const { return c < integer.size() && integer[c]; }
 };
 
 // What readChannelImage decodes at most, checked from the file's header before any pixel memory

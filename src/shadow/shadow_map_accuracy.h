@@ -1,5 +1,5 @@
 // How right a shadow map is: its shadow test at surface points
-// against the true light visibility there (a shadow ray per pixel, support/oracle).
+// against the true light visibility there (a shadow ray per pixel, src/oracle).
 #pragma once
 
 #include <cstddef>

@@ -158,7 +158,7 @@ TEST_CASE("bad flags and values are bad usage (exit 2) and write nothing", "[cli
   CHECK_FALSE(fs::exists(scratch() / "x.jpg"));
 }
 
-TEST_CASE("compare exits 0 for identical images, 1 when they differ, 2 when one cannot be read", "[cli]") {
+TEST_CASE("compare exits 0 for identical images, 2 (FAILURE) when they differ, 4 when one cannot be read", "[cli]") {
   const fs::path dir = scratch();
   const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string();
   REQUIRE(runShadowref("render scenes/minimal.yaml -D image.width=32 -D image.height=24 -o '" + a + "' --quiet").status == 0);
@@ -166,9 +166,9 @@ TEST_CASE("compare exits 0 for identical images, 1 when they differ, 2 when one 
               "' --quiet").status == 0);
   CHECK(runShadowref("compare '" + a + "' '" + a + "'").status == 0);
   const CliRun differ = runShadowref("compare '" + a + "' '" + b + "'");
-  CHECK(differ.status == 1);
+  CHECK(differ.status == 2);
   CHECK(differ.out.find("R") != std::string::npos);
-  CHECK(runShadowref("compare '" + a + "' '" + (dir / "missing.exr").string() + "'").status == 2);
+  CHECK(runShadowref("compare '" + a + "' '" + (dir / "missing.exr").string() + "'").status == 4);
 }
 
 TEST_CASE("bench prints the median frame and each pass, at any thread count, and judges none", "[cli]") {
@@ -279,13 +279,13 @@ TEST_CASE("compare refuses an image whose header declares more pixels than its f
   writeLyingPng(png, 30000, 30000);
   REQUIRE(fs::file_size(png) < 100);
   const CliRun r = runShadowref("compare '" + png.string() + "' '" + png.string() + "'");
-  CHECK(r.status == 2);
+  CHECK(r.status == 4);
   CHECK(r.err.find("cannot read '" + png.string() + "'") != std::string::npos);
   CHECK(r.err.find("30000x30000 pixels with 1 channels, more than the limit of 536870912") != std::string::npos);
   // 20000^2 are within it, but 4e8 bytes of pixels do not fit in 1032 times the file's bytes.
   writeLyingPng(png, 20000, 20000);
   const CliRun small = runShadowref("compare '" + png.string() + "' '" + png.string() + "'");
-  CHECK(small.status == 2);
+  CHECK(small.status == 4);
   CHECK(small.err.find("20000x20000 pixels with 1 channels (400000000 bytes of pixels), more than its") !=
         std::string::npos);
   CHECK(small.err.find("file can hold") != std::string::npos);

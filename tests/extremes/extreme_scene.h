@@ -3,7 +3,7 @@
 // Every extreme starts from one small, hand-checkable scene — a box on a ground slab under a point
 // light — and pushes one parameter to its limit (near plane, translation, scale, light position,
 // camera position). The rendered stencil is compared with the ray-cast oracle
-// (support/oracle/oracle.h), which works in double precision and never touches the
+// (src/oracle/oracle.h), which works in double precision and never touches the
 // rasterizer, so what differs is the rasterizer's numerics.
 #pragma once
 

@@ -18,6 +18,7 @@
 #include "image/image_writer.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
+#include "support/golden_report.h"
 
 using namespace shadowref;
 
@@ -83,13 +84,10 @@ TEST_CASE("golden: every shadow-volume method on room, pumpkins, city16, minimal
       writeExr(frame.framebuffer, path, extras);
       continue;
     }
-    if (!std::filesystem::exists(path)) {
-      FAIL_CHECK("missing golden " << path << ": run scripts/update-goldens.sh after checking the change is intended");
-      continue;
-    }
-    const CompareResult result = compareWithExr(frame.framebuffer, extras, path);
-    INFO(formatReport(result));
-    CHECK(result.passed);
+    // On failure: a report with the golden, this frame and their difference (the message names it).
+    const testing::GoldenOutcome outcome = testing::checkGoldenExr(c.name, frame.framebuffer, extras, path);
+    INFO(outcome.message);
+    CHECK(outcome.passed);
   }
   if (update) WARN("goldens written to golden/ (SHADOWREF_UPDATE_GOLDENS=1): review them with git diff --stat");
 }

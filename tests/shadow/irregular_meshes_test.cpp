@@ -1,8 +1,9 @@
 // The scenes with meshes that are not closed outward solids (scenes/tent.yaml: an open tent;
 // scenes/irregular.yaml: a lone triangle lit from behind, non-manifold fins, an inside-out cube, a
 // cube with one face reversed, two cubes in one mesh of which one is inside out), rendered and
-// checked against the ray-cast oracle (support/oracle/oracle.h): every stencil method gives the
-// same stencil, byte for byte, and that stencil is the oracle's count away from edges. The camera is outside every volume in both, so
+// checked against the ray-cast oracle (src/oracle/oracle.h): every stencil method gives the
+// same stencil, byte for byte, and that stencil is the oracle's count away from edges. The camera
+// is outside every volume in both, so
 // z-pass must not differ from z-fail anywhere (shadow/volume_casting.h).
 #include <catch2/catch.hpp>
 

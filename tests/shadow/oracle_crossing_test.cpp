@@ -1,4 +1,4 @@
-// The oracle's projective segment-triangle test (support/oracle/projective_crossing.h),
+// The oracle's projective segment-triangle test (src/oracle/projective_crossing.h),
 // checked against direct determinants, against finite stand-ins for triangles with vertices at
 // infinity, and against the winding number of analytically known shadow volumes.
 #include <catch2/catch.hpp>

@@ -16,6 +16,7 @@
 #include "image/image_writer.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
+#include "support/golden_report.h"
 
 using namespace shadowref;
 
@@ -70,20 +71,18 @@ ExrExtras mapChannels(const FrameResult& frame) {
 }
 
 // Writes or compares one file; false when it fails.
+// On failure the message names a report with the golden, this frame and their difference.
 bool checkGolden(const Framebuffer& fb, const ExrExtras& extras, const std::string& path, bool update) {
   if (update) {
     std::filesystem::create_directories(std::filesystem::path(path).parent_path());
     writeExr(fb, path, extras);
     return true;
   }
-  if (!std::filesystem::exists(path)) {
-    FAIL_CHECK("missing golden " << path << ": run scripts/update-goldens.sh after checking the change is intended");
-    return false;
-  }
-  const CompareResult result = compareWithExr(fb, extras, path);
-  INFO(formatReport(result));
-  CHECK(result.passed);
-  return result.passed;
+  const testing::GoldenOutcome outcome =
+      testing::checkGoldenExr(std::filesystem::path(path).stem().string(), fb, extras, path);
+  INFO(outcome.message);
+  CHECK(outcome.passed);
+  return outcome.passed;
 }
 
 }  // namespace

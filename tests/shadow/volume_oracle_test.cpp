@@ -1,5 +1,5 @@
 // The rasterized stencil shadow volumes checked against the independent ray-cast oracle
-// (support/oracle/oracle.h).
+// (src/oracle/oracle.h).
 //
 // The oracle never touches the rasterizer: it counts the signed crossings of the volume polygons
 // along each pixel's ray in double precision. The stencil after a light's volume pass must hold

@@ -89,6 +89,7 @@ ChannelImage readWithOiio(const std::string& path, const ReadLimits& limits) {
   for (int c = 0; c < spec.nchannels; ++c) {
     image.names.push_back(spec.channel_name(c));
     image.data.push_back(readChannel(*in, spec, c, path));
+    image.integer.push_back(isWideInteger(spec.channelformat(c)));
   }
   in->close();
   return image;
