@@ -4,10 +4,15 @@
 #   scripts/setup.sh [--role render|test|bench] [BUILD_DIR] [extra cmake args...]
 # Roles, each including the one before:
 #   render  the compiler, CMake and the libraries the CLI links (glm, yaml-cpp, tinygltf, CLI11,
-#           libpng, OpenEXR, nettle); builds only the CLI (scripts/render-default.sh)
+#           libpng, OpenEXR, nettle), and pybind11 and NumPy for the Python module; builds the CLI
+#           and the module (scripts/render-default.sh)
 #   test    + OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
-#           OSMesa (the conformance tests), clang and its runtimes (fuzzing); builds everything
+#           OSMesa (the conformance tests), clang and its runtimes (fuzzing), pytest, nbclient,
+#           ipykernel and matplotlib (the Python tests and the notebook); builds everything
 #           (scripts/test.sh)
+# Where the Python module was built, the python3 on the PATH is pointed at it (a .pth file in its
+# site folder naming BUILD_DIR/python), so that `python3 -c "import shadowref"` works from then on
+# and always loads the latest build.
 #   bench   + gnuplot, hyperfine and GNU time, for the benchmark scripts (scripts/bench-*.sh)
 # Without --role: bench, i.e. everything.
 set -euo pipefail
@@ -22,8 +27,10 @@ render_packages=(
   build-essential cmake ninja-build pkg-config ccache
   libglm-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libpng-dev libopenexr-dev nettle-dev
+  python3-dev pybind11-dev python3-numpy
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev)
+test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev
+               python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in
   render) packages=("${render_packages[@]}") ;;
@@ -72,4 +79,29 @@ if $configure; then
         "${role_args[@]}" "$@" >/dev/null 2>"$build_dir.cmake.log" \
     || { cat "$build_dir.cmake.log" >&2; exit 1; }
 fi
+# The render role builds the Python module too where it is configured (Python, NumPy, pybind11).
+if [ "$role" = render ] && grep -q '^build shadowref_python:' "$build_dir/build.ninja" 2>/dev/null; then
+  targets+=(shadowref_python)
+fi
 cmake --build "$build_dir" "${targets[@]}"
+
+# `python3 -c "import shadowref"`: a .pth file in the site folder of the python3 on the PATH names
+# the build's package folder (as `pip install -e` would). The interpreter the module was built for
+# (CMakeCache: Python3_EXECUTABLE) has NumPy; when `python3` is another of the same version (a
+# pyenv or venv interpreter), the .pth names that one's package folders too, for NumPy.
+package_dir=$PWD/$build_dir/python
+if [ -f "$package_dir/shadowref/__init__.py" ] && command -v python3 > /dev/null; then
+  built_for=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build_dir/CMakeCache.txt")
+  lines=("$package_dir")
+  if [ -n "$built_for" ] && [ "$(command -v python3)" != "$built_for" ]; then
+    same=$(python3 -c 'import sys; print(sys.version_info[:2])')
+    if [ "$same" = "$("$built_for" -c 'import sys; print(sys.version_info[:2])')" ]; then
+      while IFS= read -r line; do lines+=("$line"); done < <("$built_for" -c \
+        'import site; print("\n".join(p for p in site.getsitepackages() if "-packages" in p))')
+    fi
+  fi
+  site_dir=$(python3 -c 'import site; print(site.getsitepackages()[0])')
+  SUDO=""; [ "$(id -u)" -ne 0 ] && [ ! -w "$site_dir" ] && SUDO="sudo"
+  $SUDO mkdir -p "$site_dir"
+  printf '%s\n' "${lines[@]}" | $SUDO tee "$site_dir/shadowref.pth" > /dev/null
+fi
