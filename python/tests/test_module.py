@@ -103,27 +103,37 @@ def test_both_pipelines_and_any_thread_count_give_the_same_bytes():
 def test_two_threads_render_at_once_and_release_the_gil():
     scene = shadowref.load("scenes/room.yaml", {"image.width": 320, "image.height": 240})
     serial = shadowref.render(scene, method="zfail", threads=1).color.tobytes()
-    spans, results = {}, {}
 
-    def work(name):
-        start = time.perf_counter()
-        results[name] = shadowref.render(scene, method="zfail", threads=1, pipeline="reference").color.tobytes()
-        spans[name] = (start, time.perf_counter())
+    def attempt():
+        spans, results = {}, {}
 
-    workers = [threading.Thread(target=work, args=(n,)) for n in ("a", "b")]
-    ticks = []
-    for t in workers:
-        t.start()
-    while any(t.is_alive() for t in workers):
-        ticks.append(time.perf_counter())
-    for t in workers:
-        t.join()
-    assert results["a"] == serial and results["b"] == serial
-    # While a render ran, this thread kept running: no gap in its ticks as long as half a render
-    # (a render holding the GIL would stop it for the whole render).
-    start, end = spans["a"]
-    inside = [start] + [t for t in ticks if start < t < end] + [end]
-    assert max(b - a for a, b in zip(inside, inside[1:])) < 0.5 * (end - start), (end - start)
+        def work(name):
+            start = time.perf_counter()
+            results[name] = shadowref.render(scene, method="zfail", threads=1, pipeline="reference").color.tobytes()
+            spans[name] = (start, time.perf_counter())
+
+        workers = [threading.Thread(target=work, args=(n,)) for n in ("a", "b")]
+        ticks = []
+        for t in workers:
+            t.start()
+        while any(t.is_alive() for t in workers):
+            ticks.append(time.perf_counter())
+        for t in workers:
+            t.join()
+        assert results["a"] == serial and results["b"] == serial
+        # The longest stretch of a render during which this thread did not run, as a share of the
+        # render: a render holding the GIL would stop this thread for all of it (close to 1).
+        start, end = spans["a"]
+        inside = [start] + [t for t in ticks if start < t < end] + [end]
+        return max(b - a for a, b in zip(inside, inside[1:])) / (end - start)
+
+    # Three tries, so that a busy machine's scheduler cannot fail it; holding the GIL fails all three.
+    stalls = []
+    for _ in range(3):
+        stalls.append(attempt())
+        if stalls[-1] < 0.5:
+            break
+    assert min(stalls) < 0.5, stalls
 
 
 CAMERA_OVER_PLANE = {
