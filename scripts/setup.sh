@@ -86,22 +86,30 @@ fi
 cmake --build "$build_dir" "${targets[@]}"
 
 # `python3 -c "import shadowref"`: a .pth file in the site folder of the python3 on the PATH names
-# the build's package folder (as `pip install -e` would). The interpreter the module was built for
-# (CMakeCache: Python3_EXECUTABLE) has NumPy; when `python3` is another of the same version (a
-# pyenv or venv interpreter), the .pth names that one's package folders too, for NumPy.
+# the build's package folder (as `pip install -e` would), and another in the site folder of the
+# interpreter the module was built for (CMakeCache: Python3_EXECUTABLE, the one with NumPy; also
+# Debian's Jupyter kernel) when that is not the same. When `python3` is another interpreter of the
+# same version (pyenv, a venv), its .pth names the built-for one's package folders too, for NumPy.
 package_dir=$PWD/$build_dir/python
-if [ -f "$package_dir/shadowref/__init__.py" ] && command -v python3 > /dev/null; then
+write_pth() {  # PYTHON LINE...: writes the lines to PYTHON's shadowref.pth
+  local site_dir sudo=""
+  site_dir=$("$1" -c 'import site; print(site.getsitepackages()[0])')
+  shift
+  [ "$(id -u)" -ne 0 ] && [ ! -w "$(dirname "$site_dir")" ] && sudo="sudo"
+  $sudo mkdir -p "$site_dir"
+  printf '%s\n' "$@" | $sudo tee "$site_dir/shadowref.pth" > /dev/null
+}
+if [ -f "$package_dir/shadowref/__init__.py" ]; then
   built_for=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build_dir/CMakeCache.txt")
-  lines=("$package_dir")
-  if [ -n "$built_for" ] && [ "$(command -v python3)" != "$built_for" ]; then
-    same=$(python3 -c 'import sys; print(sys.version_info[:2])')
-    if [ "$same" = "$("$built_for" -c 'import sys; print(sys.version_info[:2])')" ]; then
+  [ -n "$built_for" ] && write_pth "$built_for" "$package_dir"
+  on_path=$(command -v python3 || true)
+  if [ -n "$on_path" ] && [ "$(realpath "$on_path")" != "$(realpath "${built_for:-/nonexistent}" 2>/dev/null)" ]; then
+    lines=("$package_dir")
+    version='import sys; print(sys.version_info[:2])'
+    if [ -n "$built_for" ] && [ "$(python3 -c "$version")" = "$("$built_for" -c "$version")" ]; then
       while IFS= read -r line; do lines+=("$line"); done < <("$built_for" -c \
         'import site; print("\n".join(p for p in site.getsitepackages() if "-packages" in p))')
     fi
+    write_pth python3 "${lines[@]}"
   fi
-  site_dir=$(python3 -c 'import site; print(site.getsitepackages()[0])')
-  SUDO=""; [ "$(id -u)" -ne 0 ] && [ ! -w "$site_dir" ] && SUDO="sudo"
-  $SUDO mkdir -p "$site_dir"
-  printf '%s\n' "${lines[@]}" | $SUDO tee "$site_dir/shadowref.pth" > /dev/null
 fi
