@@ -128,7 +128,8 @@ struct Frame {
   size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
 };
 
-// Renders one frame. Throws Error for an unknown method or a pixel outside the image.
+// Renders one frame. Throws Error for an unknown method, a pixel outside the image, or per-light
+// buffers over their limits (stencilPerLight: 2^27 counts, visibility: 2^26 values, as the CLI).
 Frame render(const Scene& scene, const RenderOptions& options = {});
 
 // Writes the frame as `render -o` does, chosen by the extension: ".png" (8-bit RGB) or ".exr"

@@ -261,3 +261,16 @@ def test_docs_quote_the_golden_example_as_it_is():
     marker = "<!-- python/tests/test_golden_example.py -->\n```python\n"
     start = page.index(marker) + len(marker)
     assert page[start:page.index("```\n", start)] == (ROOT / "python/tests/test_golden_example.py").read_text()
+
+
+def test_per_light_buffers_are_bounded_before_rendering():
+    # 2 lights x 6000 x 6000 = 7.2e7 visibility values > 2^26; with the first light soft (itself and
+    # 8 around it) 10 x 3.6e7 stencil counts > 2^27.
+    big = {"image.width": 6000, "image.height": 6000}
+    start = time.perf_counter()
+    with pytest.raises(shadowref.SceneError, match=r"^visibility: 2 lights x 6000x6000 values is more than"):
+        shadowref.render("scenes/two_lights.yaml", overrides=big, method="zpass", shadow_maps=False)
+    with pytest.raises(shadowref.SceneError, match=r"^stencil per light: 10 lights x 6000x6000"):
+        shadowref.render("scenes/two_lights.yaml", overrides=dict(big, **{"lights.0.soft.shape": "square_y"}),
+                         method="zpass", visibility=False)
+    assert time.perf_counter() - start < 5  # refused before anything the size of the image was made

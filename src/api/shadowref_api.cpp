@@ -7,16 +7,19 @@
 #include <exception>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 #include "api/scene_impl.h"
 #include "image/image_writer.h"
 #include "image/output_metadata.h"
+#include "scene/checked_arithmetic.h"
 #include "scene/scene.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
 #include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/scene_view.h"
+#include "shadow/soft_lights.h"
 #include "shadow/technique.h"
 #include "shadow/technique_registry.h"
 
@@ -104,6 +107,33 @@ std::vector<double> eyeDepths(const shadowref::Scene& scene, const ShadowTechniq
   return eye;
 }
 
+// The buffers a frame keeps per light are bounded before anything is rendered, with the limits
+// of `render --dump stencil` and `--dump visibility`: 2^27 stencil counts (one byte each) and
+// 2^26 visibility values (floats, counted and copied: about 1 GiB at most).
+constexpr uint64_t kMaxKeptStencilCounts = uint64_t(1) << 27;
+constexpr uint64_t kMaxVisibilityValues = uint64_t(1) << 26;
+
+void checkKeptBuffers(const shadowref::Scene& s, const RenderOptions& options) {
+  const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);  // within the scene's limits
+  const std::string image = std::to_string(s.width) + "x" + std::to_string(s.height);
+  if (options.stencilPerLight) {
+    uint64_t lights = 0;
+    for (const Light& light : s.lights) lights += expandSoftLight(light).size();
+    const std::optional<uint64_t> counts = checkedMul(pixels, lights);
+    if (!counts || *counts > kMaxKeptStencilCounts)
+      throw Error("stencil per light: " + std::to_string(lights) + " lights x " + image +
+                  " counts is more than the limit of 2^27; keep none (stencilPerLight = false), or render fewer "
+                  "lights or a smaller image");
+  }
+  if (options.visibility) {
+    const std::optional<uint64_t> values = checkedMul(pixels, uint64_t(s.lights.size()));
+    if (!values || *values > kMaxVisibilityValues)
+      throw Error("visibility: " + std::to_string(s.lights.size()) + " lights x " + image +
+                  " values is more than the limit of 2^26; keep none (visibility = false), or render fewer lights "
+                  "or a smaller image");
+  }
+}
+
 }  // namespace
 
 std::string version() { return SHADOWREF_API_VERSION; }
@@ -147,6 +177,7 @@ Frame render(const Scene& scene, const RenderOptions& options) {
     throw Error("method: " + unknownTechniqueMessage(options.method));
   frameOptions.pipeline = options.pipeline == Pipeline::Reference ? PipelineKind::Reference : PipelineKind::Fast;
   frameOptions.threads = options.threads;
+  checkKeptBuffers(s, options);
   frameOptions.keepStencil = options.stencilPerLight;
   frameOptions.keepVisibility = options.visibility;
   frameOptions.keepShadowMaps = options.shadowMaps;
