@@ -4,10 +4,15 @@
 #   scripts/setup.sh [--role render|test|bench] [BUILD_DIR] [extra cmake args...]
 # Roles, each including the one before:
 #   render  the compiler, CMake and the libraries the CLI links (glm, yaml-cpp, tinygltf, CLI11,
-#           libpng, OpenEXR, nettle); builds only the CLI (scripts/render-default.sh)
+#           libpng, OpenEXR, nettle), and pybind11 and NumPy for the Python module; builds the CLI
+#           and the module (scripts/render-default.sh)
 #   test    + OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
-#           OSMesa (the conformance tests), clang and its runtimes (fuzzing); builds everything
+#           OSMesa (the conformance tests), clang and its runtimes (fuzzing), pytest, nbclient,
+#           ipykernel and matplotlib (the Python tests and the notebook); builds everything
 #           (scripts/test.sh)
+# Where the Python module was built, the python3 on the PATH is pointed at it (a .pth file in its
+# site folder naming BUILD_DIR/python), so that `python3 -c "import shadowref"` works from then on
+# and always loads the latest build.
 #   bench   + gnuplot, hyperfine and GNU time, for the benchmark scripts (scripts/bench-*.sh)
 # Without --role: bench, i.e. everything.
 set -euo pipefail
@@ -22,8 +27,10 @@ render_packages=(
   build-essential cmake ninja-build pkg-config ccache
   libglm-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libpng-dev libopenexr-dev nettle-dev
+  python3-dev pybind11-dev python3-numpy
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev)
+test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev
+               python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in
   render) packages=("${render_packages[@]}") ;;
@@ -72,4 +79,37 @@ if $configure; then
         "${role_args[@]}" "$@" >/dev/null 2>"$build_dir.cmake.log" \
     || { cat "$build_dir.cmake.log" >&2; exit 1; }
 fi
+# The render role builds the Python module too where it is configured (Python, NumPy, pybind11).
+if [ "$role" = render ] && grep -q '^build shadowref_python:' "$build_dir/build.ninja" 2>/dev/null; then
+  targets+=(shadowref_python)
+fi
 cmake --build "$build_dir" "${targets[@]}"
+
+# `python3 -c "import shadowref"`: a .pth file in the site folder of the python3 on the PATH names
+# the build's package folder (as `pip install -e` would), and another in the site folder of the
+# interpreter the module was built for (CMakeCache: Python3_EXECUTABLE, the one with NumPy; also
+# Debian's Jupyter kernel) when that is not the same. When `python3` is another interpreter of the
+# same version (pyenv, a venv), its .pth names the built-for one's package folders too, for NumPy.
+package_dir=$PWD/$build_dir/python
+write_pth() {  # PYTHON LINE...: writes the lines to PYTHON's shadowref.pth
+  local site_dir sudo=""
+  site_dir=$("$1" -c 'import site; print(site.getsitepackages()[0])')
+  shift
+  [ "$(id -u)" -ne 0 ] && [ ! -w "$(dirname "$site_dir")" ] && sudo="sudo"
+  $sudo mkdir -p "$site_dir"
+  printf '%s\n' "$@" | $sudo tee "$site_dir/shadowref.pth" > /dev/null
+}
+if [ -f "$package_dir/shadowref/__init__.py" ]; then
+  built_for=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build_dir/CMakeCache.txt")
+  [ -n "$built_for" ] && write_pth "$built_for" "$package_dir"
+  on_path=$(command -v python3 || true)
+  if [ -n "$on_path" ] && [ "$(realpath "$on_path")" != "$(realpath "${built_for:-/nonexistent}" 2>/dev/null)" ]; then
+    lines=("$package_dir")
+    version='import sys; print(sys.version_info[:2])'
+    if [ -n "$built_for" ] && [ "$(python3 -c "$version")" = "$("$built_for" -c "$version")" ]; then
+      while IFS= read -r line; do lines+=("$line"); done < <("$built_for" -c \
+        'import site; print("\n".join(p for p in site.getsitepackages() if "-packages" in p))')
+    fi
+    write_pth python3 "${lines[@]}"
+  fi
+fi

@@ -3,7 +3,8 @@
 # (golden/README.md): the golden images of tests/shadow/golden_test.cpp ([golden], shadow volumes:
 # golden/<case>.exr), tests/shadow/shadow_map_golden_test.cpp ([golden-sm], shadow maps:
 # golden/sm-*.exr) and the frame hashes of tests/shadow/frame_hash_test.cpp
-# (golden/frame-hashes.txt, also [golden]).
+# (golden/frame-hashes.txt, also [golden]); with --write also the golden of docs/python.md's pytest
+# example (python/tests/golden/).
 #   scripts/update-goldens.sh [--write] [BUILD_DIR]      default BUILD_DIR: build
 # Without --write (a dry run) it only runs the golden tests: every golden that would change gets a
 # failure report — the golden, this build's frame and their difference, one HTML page per case —
@@ -45,4 +46,9 @@ for tag in "[golden]" "[golden-sm]"; do
   SHADOWREF_UPDATE_GOLDENS=1 "$build_dir/tests/shadowref_tests" "$tag"
   SHADOWREF_GOLDEN_REPORT_DIR="$PWD/$report/after-write" "$build_dir/tests/shadowref_tests" "$tag"
 done
+# The golden of the pytest example in docs/python.md (python/tests/golden/), where the Python
+# module and pytest are built and found.
+if ctest --test-dir "$build_dir" -N -R '^python:pytest$' | grep -q 'python:pytest'; then
+  SHADOWREF_UPDATE_GOLDENS=1 ctest --test-dir "$build_dir" -R '^python:pytest$' --output-on-failure
+fi
 du -ch golden/*.exr | tail -1

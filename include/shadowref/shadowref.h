@@ -17,6 +17,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shadowref::api {
@@ -68,7 +69,19 @@ struct RenderOptions {
   int threads = 0;                    // 0: one per CPU this process may run on (its affinity mask)
   bool stencilPerLight = false;       // keep each light's stencil counts after its volume pass
   int historyX = -1, historyY = -1;   // >= 0: record the pixel history of (x, y) (reference pipeline)
+  bool visibility = false;            // each light's shadow mask, Frame::visibility
+  bool shadowMaps = false;            // the shadow maps' depths, Frame::shadowMaps (shadow-map methods)
 };
+
+// One shadow map of a shadow-map method: the depth texture a light's pass wrote, width * height
+// values in [0, 1] with row 0 at the bottom. "L0", or "L0.face3" for a point light's cube face.
+struct ShadowMap {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<float> depth;
+};
+
+struct FrameData;  // the renderer's own framebuffer, kept for writeImage
 
 // One fragment that reached the watched pixel, in drawing order.
 struct FragmentRecord {
@@ -95,11 +108,34 @@ struct Frame {
   std::vector<std::vector<uint8_t>> stencilPerLight;
   std::vector<std::string> lightNames;
   std::vector<FragmentRecord> history;  // with RenderOptions::historyX/Y
+  // The distance from the camera along its view direction, from the depth buffer through the
+  // projection the frame was drawn with; +infinity where the depth is 1 under the infinite
+  // projection (the background of a shadow-volume frame).
+  std::vector<double> eyeDepth;
+  // With RenderOptions::visibility: per light of the scene (in its order, a soft light once) how
+  // much of it reaches the surface each pixel shows: 1 lit, 0 in shadow, fractions with PCF and
+  // soft lights; the background is 1. The lights' names are in visibilityNames.
+  std::vector<std::vector<float>> visibility;
+  std::vector<std::string> visibilityNames;
+  std::vector<ShadowMap> shadowMaps;    // with RenderOptions::shadowMaps
+  // The pipeline's counters (`render --stats`): "draw_calls", "triangles_in", "fragments", ...
+  std::vector<std::pair<std::string, uint64_t>> statistics;
+  std::vector<std::pair<std::string, double>> passMilliseconds;  // each pass's time, in order
+  std::vector<std::string> warnings;    // what `render` prints on stderr about the scene
+  std::shared_ptr<const FrameData> data;
+
 
   size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
 };
 
-// Renders one frame. Throws Error for an unknown method or a pixel outside the image.
+// Renders one frame. Throws Error for an unknown method, a pixel outside the image, or per-light
+// buffers over their limits (stencilPerLight: 2^27 counts, visibility: 2^26 values, as the CLI).
 Frame render(const Scene& scene, const RenderOptions& options = {});
+
+// Writes the frame as `render -o` does, chosen by the extension: ".png" (8-bit RGB) or ".exr"
+// (R, G, B, A, Z, stencil and, with several lights and RenderOptions::stencilPerLight, one
+// "stencil.<light>" channel each). Atomic: the file is complete or absent. Throws Error for
+// another extension and std::runtime_error when the file cannot be written.
+void writeImage(const Frame& frame, const std::string& path);
 
 }  // namespace shadowref::api
