@@ -15,8 +15,12 @@
 #include "scene/checked_arithmetic.h"
 #include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
+#include "shadow/scene_view.h"
 #include "shadow/soft_lights.h"
 #include "shadow/technique_registry.h"
+#include "views/depth_view.h"
+#include "views/stencil_counts_view.h"
+#include "views/volume_colours.h"
 
 namespace shadowref::cli {
 
@@ -139,16 +143,22 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_flag("--quiet", args.quiet, "Print nothing but errors");
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
   render->add_option("--dump", args.dumps,
-                     "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (per light: false-colour "
-                     "PNG with legend, and stencil.L<i> EXR channels), 'depth' (grey PNG), 'shadowmap' (per light: grey PNG "
-                     "and EXR with the Z channel), 'visibility' (per scene light: grey PNG, 1 lit white, 0 in shadow "
+                     "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (volume methods, per light: "
+                     "false-colour PNG with legend, and stencil.L<i> EXR channels), 'depth' (eye depth on a colour map, "
+                     "auto-ranged, with a colour bar), 'shadowmap' (map methods, per light: stored depth likewise, and "
+                     "EXR with the Z channel), 'visibility' (per scene light: grey PNG, 1 lit white, 0 in shadow "
                      "black, and visibility.L<i> EXR channels, for every method)")
       ->check(CLI::IsMember({"passes", "stencil", "depth", "shadowmap", "visibility"}));
   render->add_option("--dump-region", args.dumpRegion, "x,y,w,h: print the stencil counts of that region per light "
-                                                       "(row 0 is the bottom)");
+                                                       "(row 0 is the bottom; volume methods)");
+  render->add_option("--stencil-view", args.stencilView,
+                     "How stencil counts read in --dump stencil/passes, --dump-region and --pixel-history: 'unsigned' "
+                     "(default: the byte, 255 stays 255) or 'signed' (128..255 as -128..-1, for wrapping ops)")
+      ->check(CLI::IsMember({"unsigned", "signed"}));
   render->add_option("--view", args.view,
-                     "Draw the shadow volumes over the frame: 'volumes' (front faces red, back faces blue, [SV slides]) or "
-                     "'volumes-overlay' (translucent red, [DSS article])")
+                     "Draw the shadow volumes over the frame (volume methods): 'volumes' (front and back faces in two "
+                     "hues per light, away from the scene's colours, [SV slides]) or 'volumes-overlay' (translucent "
+                     "red, [DSS article])")
       ->check(CLI::IsMember({"volumes", "volumes-overlay"}));
   render->add_option("--pixel-history", args.pixelHistory,
                      "x,y: print every fragment that touched that pixel (rendered by the reference pipeline)");
@@ -164,6 +174,8 @@ int runRender(const RenderArgs& args) {
   options.pipeline = args.pipeline == "reference" ? PipelineKind::Reference : PipelineKind::Fast;
   if (!checkMethodOrReport(args.method)) return kBadInput;
   options.method = args.method;
+  const ShadowTechnique& technique = args.method.empty() ? techniqueOf(scene->shadow) : *findTechnique(args.method);
+  const bool signedCounts = args.stencilView == "signed";
   std::vector<std::string> outputs = args.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
   bool anyExr = false;
@@ -218,13 +230,11 @@ int runRender(const RenderArgs& args) {
   // light's counts at once: their number is bounded before anything is rendered.
   options.keepStencil = (dumpStencil || !region.empty()) && anyExr;
   if (options.keepStencil) {
-    const bool countsInStencil =
-        (options.method.empty() ? techniqueOf(scene->shadow) : *findTechnique(options.method)).countsInStencil;
     uint64_t lights = 0;
     for (const Light& light : scene->lights) lights += expandSoftLight(light).size();
     const std::optional<uint64_t> counts =
         checkedMul(checkedMul(uint64_t(scene->width), uint64_t(scene->height)).value_or(UINT64_MAX), lights);
-    if (countsInStencil && lights > 1 && (!counts || *counts > kMaxKeptStencilCounts)) {
+    if (technique.countsInStencil && lights > 1 && (!counts || *counts > kMaxKeptStencilCounts)) {
       std::cerr << "--dump stencil with an .exr output: the EXR's per-light stencil channels would hold " << lights
                 << " lights x " << scene->width << "x" << scene->height << " counts, more than the limit of "
                 << kMaxKeptStencilCounts << " (2^27); drop the .exr output or the --dump, or render fewer lights or a "
@@ -244,7 +254,10 @@ int runRender(const RenderArgs& args) {
     }
   }
   options.keepShadowMaps = wants(args.dumps, "shadowmap");
-  if (args.view == "volumes") options.volumeView = VolumeViewMode::FrontBack;
+  if (args.view == "volumes") {
+    options.volumeView = VolumeViewMode::FrontBack;
+    options.volumeColours = views::volumeColours(*scene);
+  }
   if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
   std::vector<std::string> passFiles;
   std::vector<std::string> madeFolders;  // by this render: taken away again if it fails
@@ -264,26 +277,24 @@ int runRender(const RenderArgs& args) {
         const std::string light = pass.substr(at + 9);
         ++stencilPasses;
         if (dumpStencil) {
-          StencilViewOptions view;
-          view.signedCounts = true;  // wrapping ops store -1 as 255
           const std::string path = siblingPath(outputs.front(), "stencil-" + light);
           ensureParentDirectory(path, &madeFolders);
-          writeStencilPng(fb.stencil(), fb.width(), fb.height(), path, view, showing("stencil " + light));
+          views::writeViewPng(views::stencilView(fb.stencil(), fb.width(), fb.height(), {.signedCounts = signedCounts}),
+                              path, showing("stencil " + light));
           passFiles.push_back(path);
         }
         if (!region.empty())
           grids += "light " + light + ":\n" +
                    stencilGrid(fb.stencil(), fb.width(), fb.height(), int(region[0]), int(region[1]), int(region[2]),
-                               int(region[3]), true);
+                               int(region[3]), signedCounts);
       }
       if (!dumpPasses) return;
       const std::string path = siblingPath(outputs.front(), "pass-" + pass);
       ensureParentDirectory(path, &madeFolders);
       // A volume pass changes only the stencil buffer: its picture is the stencil counts.
       if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
-        StencilViewOptions view;
-        view.signedCounts = true;
-        writeStencilPng(fb, path, view, showing("pass " + pass));
+        views::writeViewPng(views::stencilView(fb.stencil(), fb.width(), fb.height(), {.signedCounts = signedCounts}),
+                            path, showing("pass " + pass));
       } else if (fb.hasColor()) {
         writePng(fb, path, false, showing("pass " + pass));
       } else {
@@ -314,7 +325,10 @@ int runRender(const RenderArgs& args) {
       std::vector<float> depth(frame.framebuffer.depthCodes().size());
       for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(frame.framebuffer.depthCodec().decode(frame.framebuffer.depthCodes()[i]));
       const std::string path = siblingPath(outputs.front(), "depth");
-      writeGreyPng(depth, scene->width, scene->height, path, 0.0f, 1.0f, showing("depth"));
+      // The camera the technique drew with: volumes need P_inf ([Kuhn 2016, §3.3]).
+      const SceneView camera = makeCameraView(*scene, technique.drawsVolumes);
+      views::writeViewPng(views::depthView(depth, scene->width, scene->height, camera.projection, camera.viewport), path,
+                          showing("depth"));
       passFiles.push_back(path);
     }
     for (size_t i = 0; i < frame.visibility.size(); ++i) {
@@ -329,7 +343,8 @@ int runRender(const RenderArgs& args) {
       const DepthTexture& map = frame.shadowMaps[i];
       const std::string png = siblingPath(outputs.front(), "shadowmap-" + frame.shadowMapNames[i]);
       const std::vector<float> depth = map.values();
-      writeGreyPng(depth, map.width, map.height, png, 0.0f, 1.0f, showing("shadow map " + frame.shadowMapNames[i]));
+      views::writeViewPng(views::shadowMapView(depth, map.width, map.height), png,
+                          showing("shadow map " + frame.shadowMapNames[i]));
       Framebuffer holder(map.width, map.height);
       ExrExtras z;
       z.channels.push_back(NamedChannel::floatChannel("Z", depth));

@@ -21,6 +21,7 @@ bool glyphFor(char c, Glyph& g) {
     case '9': g = {0b111, 0b101, 0b111, 0b001, 0b111}; return true;
     case '+': g = {0b000, 0b010, 0b111, 0b010, 0b000}; return true;
     case '-': g = {0b000, 0b000, 0b111, 0b000, 0b000}; return true;
+    case '.': g = {0b000, 0b000, 0b000, 0b000, 0b010}; return true;
     default: return false;
   }
 }

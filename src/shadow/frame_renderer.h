@@ -3,6 +3,7 @@
 // in order.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <span>
@@ -52,6 +53,10 @@ struct FrameOptions {
   // Compute each scene light's visibility (shadow/visibility.h) into FrameResult::visibility.
   bool keepVisibility = false;
   VolumeViewMode volumeView = VolumeViewMode::None;
+  // VolumeViewMode::FrontBack: the colours of each scene light's front and back faces (a soft
+  // light's samples share their light's), in scene.lights' order; a light beyond the list, or an
+  // empty list, gets red and blue ([SV slides]).
+  std::vector<std::array<glm::dvec3, 2>> volumeColours;
 };
 
 struct PassTiming {

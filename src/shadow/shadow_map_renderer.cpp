@@ -398,6 +398,7 @@ extern const ShadowTechnique kShadowMapTechnique{
     .summary = "shadow maps: a depth map per light, compared per fragment [Williams 1978], [Hempe 2004, §3.1]",
     .settings = kStandardSettings,
     .countsInStencil = false,
+    .rendersShadowMaps = true,
     .render = renderMapsOfKind<ShadowMapKind::Standard>,
     .describe = describeStandardSettings,
 };
@@ -407,6 +408,7 @@ extern const ShadowTechnique kTrapezoidalTechnique{
     .summary = "trapezoidal shadow maps: the map warped to the view frustum's trapezoid [Martin & Tan 2004], [Hempe 2004, §4.1]",
     .settings = kTrapezoidalSettings,
     .countsInStencil = false,
+    .rendersShadowMaps = true,
     .render = renderMapsOfKind<ShadowMapKind::Trapezoidal>,
     .describe = describeTrapezoidalSettings,
 };
