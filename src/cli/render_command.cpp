@@ -7,47 +7,25 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "cli/render_metadata.h"
 #include "image/image_writer.h"
 #include "image/stencil_view.h"
 #include "scene/checked_arithmetic.h"
-#include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/scene_view.h"
 #include "shadow/soft_lights.h"
 #include "shadow/technique_registry.h"
 #include "views/depth_view.h"
+#include "views/pixel_history.h"
 #include "views/stencil_counts_view.h"
 #include "views/volume_colours.h"
 
 namespace shadowref::cli {
 
 namespace {
-
-// Prints every fragment that reached the watched pixel: the answer to "why is this pixel dark?".
-class PixelHistoryPrinter final : public FragmentObserver {
- public:
-  explicit PixelHistoryPrinter(const std::vector<Instance>& instances) : instances_(instances) {}
-  void onFragment(const FragmentEvent& e) override {
-    std::ostringstream line;
-    line << "draw " << e.drawIndex << "  " << describeTag(e.drawTag) << "  "
-         << (e.facing == FrontFacing ? "front" : "back") << "  z=" << e.depth << " (stored " << e.storedDepth
-         << ")  stencil test " << (e.stencilPassed ? "pass" : "FAIL") << "  depth test "
-         << (!e.stencilPassed ? "-" : e.depthPassed ? "pass" : "FAIL") << "  stencil " << int(e.stencilBefore)
-         << " -> " << int(e.stencilAfter);
-    if (e.colorAfter != e.colorBefore)
-      line << "  colour (" << e.colorAfter.r << ", " << e.colorAfter.g << ", " << e.colorAfter.b << ")";
-    lines_.push_back(line.str());
-  }
-  const std::vector<std::string>& lines() const { return lines_; }
-
- private:
-  std::string describeTag(uint32_t tag) const { return describeDrawTag(tag, instances_); }
-  const std::vector<Instance>& instances_;
-  std::vector<std::string> lines_;
-};
 
 bool parsePixel(const std::string& text, int& x, int& y) {
   char comma = 0;
@@ -161,7 +139,8 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
                      "red, [DSS article])")
       ->check(CLI::IsMember({"volumes", "volumes-overlay"}));
   render->add_option("--pixel-history", args.pixelHistory,
-                     "x,y: print every fragment that touched that pixel (rendered by the reference pipeline)");
+                     "x,y: print every fragment that touched that pixel by pass and light, the clears, and each "
+                     "shadow-map lookup (always rendered by the reference pipeline)");
 }
 
 int runRender(const RenderArgs& args) {
@@ -199,15 +178,15 @@ int runRender(const RenderArgs& args) {
   }
 
   const std::vector<Instance> instances = scene->instances();
-  PixelHistoryPrinter history(instances);
+  std::optional<views::PixelHistory> history;
   if (!args.pixelHistory.empty()) {
-    if (!parsePixel(args.pixelHistory, options.watchX, options.watchY) || options.watchX < 0 ||
-        options.watchY < 0 || options.watchX >= scene->width || options.watchY >= scene->height) {
+    int x = -1, y = -1;
+    if (!parsePixel(args.pixelHistory, x, y) || x < 0 || y < 0 || x >= scene->width || y >= scene->height) {
       std::cerr << "--pixel-history: expected x,y inside the " << scene->width << "x" << scene->height << " image, got '"
                 << args.pixelHistory << "'\n";
       return kBadInput;
     }
-    options.observer = &history;
+    history.emplace(x, y);
     options.pipeline = PipelineKind::Reference;  // the pixel history's events are the reference's
   }
   const bool dumpPasses = wants(args.dumps, "passes");
@@ -302,6 +281,7 @@ int runRender(const RenderArgs& args) {
       }
       passFiles.push_back(path);
     };
+    if (history) history->attach(options);  // after onPass: its own is called first
     const FrameResult frame = renderFrame(*scene, options);
     // The EXR's ZIP blocks compress on as many threads as a fast frame renders on (same bytes).
     if (anyExr || options.keepShadowMaps) setImageWriterThreads(pipelineThreads(PipelineKind::Fast, options.threads));
@@ -364,10 +344,11 @@ int runRender(const RenderArgs& args) {
     std::cerr << "render: " << e.what() << '\n';
     return kFailed;
   }
-  if (options.observer) {
-    std::cout << "pixel " << options.watchX << "," << options.watchY << " (row 0 is the bottom): "
-              << history.lines().size() << " fragments\n";
-    for (const std::string& line : history.lines()) std::cout << "  " << line << '\n';
+  if (history) {
+    std::vector<std::string> lightNames;  // L<i>: the lights as the passes number them, soft ones expanded
+    for (const Light& light : scene->lights)
+      for (const Light& l : expandSoftLight(light)) lightNames.push_back(l.name);
+    std::cout << history->text(instances, lightNames, signedCounts);
   }
   return kSuccess;
 }

@@ -314,6 +314,11 @@ void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions
       }
     }
     pipeline.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
+    if (options.onShadowLookups) {
+      std::vector<const LightShadow*> looked;
+      for (const auto& sh : shadows) looked.push_back(sh.get());
+      options.onShadowLookups(looked);
+    }
     if (!drawCameraPass(pipeline, state, scene, view, prepared, shadows) && k == 0)
       result.notes.push_back("Gouraud materials lit per pixel: more than " +
                              std::to_string(ShadowMappedGouraudShader::kMaxLights) + " shadow-mapped lights");

@@ -1,11 +1,12 @@
 // The teaching views against hand-computed expectations: the colour map's ends, the depth view's
 // linear eye distances and auto-range, the stencil view's unsigned reading and bounded legend, the
-// volume hues' distance from the scene's.
+// volume hues' distance from the scene's, and a shadow-map lookup traced step by step.
 #include <catch2/catch.hpp>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/scene_loader.h"
+#include "shadow/shadow_lookup_trace.h"
 #include "views/depth_view.h"
 #include "views/stencil_counts_view.h"
 #include "views/value_label.h"
@@ -179,6 +180,33 @@ TEST_CASE("volume hues of the room and the two-light scene keep their distance f
       for (size_t j = 0; j < i; ++j) CHECK(hueDistance(chosen[i], chosen[j]) >= bound);
     }
   }
+}
+
+TEST_CASE("shadow lookup trace: texel, stored depth, compared r and result", "[views][shadow]") {
+  // A 4 x 4 map whose texture matrix is the identity: strq = (x, y, z, 1). Texel (1, 2) holds 0.4.
+  LightShadow shadow;
+  shadow.textures[0] = DepthTexture::filled(4, 4, 1.0f);
+  shadow.textures[0].set(1, 2, 0.4f);
+  shadow.lookup.sampler.texture = &shadow.textures[0];
+  shadow.lookup.sampler.failValue = 0.25;
+  // s = 0.3 -> floor(1.2) = 1, t = 0.6 -> floor(2.4) = 2; r = 0.5 > 0.4: shadowed.
+  ShadowLookupTrace t = traceShadowLookup(shadow, {0.3, 0.6, 0.5});
+  CHECK(t.texelX == 1);
+  CHECK(t.texelY == 2);
+  CHECK(t.stored == 0.4f);
+  CHECK(t.compared == 0.5f);
+  CHECK_FALSE(t.passed);
+  CHECK(t.result == 0.25);
+  // r = 0.3 <= 0.4: lit.
+  t = traceShadowLookup(shadow, {0.3, 0.6, 0.3});
+  CHECK(t.passed);
+  CHECK(t.result == 1.0);
+  // A constant bias of 0.2 brings r = 0.5 down to 0.3: lit.
+  shadow.lookup.constantBias = 0.2;
+  t = traceShadowLookup(shadow, {0.3, 0.6, 0.5});
+  CHECK(t.r == Approx(0.3));
+  CHECK(t.passed);
+  CHECK(t.result == 1.0);
 }
 
 TEST_CASE("shadow map view: depth 0 takes the low end without widening the range", "[views]") {
