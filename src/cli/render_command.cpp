@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli/render_metadata.h"
+#include "cli/render_option_checks.h"
 #include "image/image_writer.h"
 #include "image/stencil_view.h"
 #include "scene/checked_arithmetic.h"
@@ -154,6 +155,10 @@ int runRender(const RenderArgs& args) {
   if (!checkMethodOrReport(args.method)) return kBadInput;
   options.method = args.method;
   const ShadowTechnique& technique = args.method.empty() ? techniqueOf(scene->shadow) : *findTechnique(args.method);
+  if (const std::string problem = inapplicableRenderOption(args, technique); !problem.empty()) {
+    std::cerr << problem << '\n';
+    return kBadInput;
+  }
   const bool signedCounts = args.stencilView == "signed";
   std::vector<std::string> outputs = args.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
@@ -241,7 +246,6 @@ int runRender(const RenderArgs& args) {
   std::vector<std::string> passFiles;
   std::vector<std::string> madeFolders;  // by this render: taken away again if it fails
   std::string grids;  // --dump-region's text, one grid per light, printed after the render
-  size_t stencilPasses = 0;
   try {
     const OutputMetadata metadata = renderMetadata(args, *scene, options);
     const auto showing = [&](std::string content) {
@@ -254,7 +258,6 @@ int runRender(const RenderArgs& args) {
       const size_t at = pass.find("-stencil-");
       if (at != std::string::npos && fb.hasStencil() && (dumpStencil || !region.empty())) {
         const std::string light = pass.substr(at + 9);
-        ++stencilPasses;
         if (dumpStencil) {
           const std::string path = siblingPath(outputs.front(), "stencil-" + light);
           ensureParentDirectory(path, &madeFolders);
@@ -299,8 +302,6 @@ int runRender(const RenderArgs& args) {
       writeOutput(frame, out, extras, frameMetadata, madeFolders);
       if (!args.quiet) std::cerr << "wrote " << out << '\n';
     }
-    if (dumpStencil && stencilPasses == 0 && !args.quiet)
-      std::cerr << "--dump stencil: this method uses no stencil buffer\n";
     if (wants(args.dumps, "depth") && frame.framebuffer.hasDepth()) {
       std::vector<float> depth(frame.framebuffer.depthCodes().size());
       for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(frame.framebuffer.depthCodec().decode(frame.framebuffer.depthCodes()[i]));
@@ -333,8 +334,6 @@ int runRender(const RenderArgs& args) {
       passFiles.push_back(png);
       passFiles.push_back(exr);
     }
-    if (wants(args.dumps, "shadowmap") && frame.shadowMaps.empty() && !args.quiet)
-      std::cerr << "--dump shadowmap: this method renders no shadow map\n";
     std::cout << grids;
     if (!args.quiet)
       for (const std::string& p : passFiles) std::cerr << "wrote " << p << '\n';

@@ -1,6 +1,7 @@
-// The teaching views as the command line gives them: the overflow scene's stencil legend stays
-// small, stencil values read the same in --dump-region and --pixel-history, and the pixel history
-// names lights, clears and shadow-map lookups.
+// The teaching views as the command line gives them: options that do not apply to a method are
+// errors (exit 2, nothing written), the overflow scene's stencil legend stays small, stencil values
+// read the same in --dump-region and --pixel-history, and the pixel history names lights, clears
+// and shadow-map lookups.
 #include <catch2/catch.hpp>
 
 #include <cstdint>
@@ -44,6 +45,56 @@ size_t occurrences(const std::string& text, const std::string& what) {
 }
 
 }  // namespace
+
+TEST_CASE("every render option is checked against every method: what does not apply exits 2", "[cli][views]") {
+  const std::vector<std::string> methods = {"none", "zpass", "zfail", "auto", "shadowmap", "tsm"};
+  const std::vector<std::string> volumeMethods = {"zpass", "zfail", "auto"};
+  const std::vector<std::string> mapMethods = {"shadowmap", "tsm"};
+  auto in = [](const std::vector<std::string>& list, const std::string& m) {
+    return std::find(list.begin(), list.end(), m) != list.end();
+  };
+  struct Option {
+    std::string flags;
+    std::vector<std::string> appliesTo;
+    std::string named = "";  // the flag the refusal names; "": the first of `flags`
+  };
+  const std::vector<std::string> all = methods;
+  const std::vector<Option> options = {
+      {"--view volumes", volumeMethods},
+      {"--view volumes-overlay", volumeMethods},
+      {"--dump stencil", volumeMethods},
+      {"--dump-region 0,0,2,2", volumeMethods},
+      {"--dump shadowmap", mapMethods},
+      {"--dump depth", all},
+      {"--dump passes", all},
+      {"--dump visibility", all},
+      {"--pixel-history 3,3", all},
+      {"--dump stencil --stencil-view signed", volumeMethods},
+      {"--dump-region 0,0,1,1 --stencil-view unsigned", volumeMethods},
+      {"--pixel-history 3,3 --stencil-view signed", volumeMethods, "--stencil-view"},
+      {"--stencil-view signed", {}},  // nothing shows stencil counts
+  };
+  for (const std::string& method : methods)
+    for (const Option& option : options) {
+      INFO(method << " " << option.flags);
+      const fs::path dir = freshDir("applies");
+      const CliRun r = runShadowref("render scenes/minimal.yaml -D image.width=16 -D image.height=12 --method " + method +
+                                    " " + option.flags + " -o '" + (dir / "o.png").string() + "' --quiet");
+      if (in(option.appliesTo, method)) {
+        CHECK(r.status == 0);
+      } else {
+        CHECK(r.status == 2);
+        CHECK(fs::is_empty(dir));  // refused before anything is rendered
+        const std::string flag = option.named.empty() ? option.flags.substr(0, option.flags.find(' ')) : option.named;
+        CHECK(r.err.rfind(flag, 0) == 0);  // the message starts with the option it refuses
+      }
+    }
+  const CliRun shadowmap = runShadowref("render scenes/minimal.yaml --method shadowmap --view volumes -o '" +
+                                        (freshDir("msg") / "o.png").string() + "'");
+  CHECK(shadowmap.err ==
+        "--view volumes: the method 'shadowmap' draws no shadow volumes; it applies to zpass, zfail, auto (--method "
+        "NAME)\n");
+}
 
 TEST_CASE("the overflow scene's stencil legend stays small with 255 saturated counts", "[cli][views]") {
   // Saturating ops, two passes: the 400 x 320 picture holds dozens of distinct counts up to 255.
