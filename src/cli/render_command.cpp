@@ -7,44 +7,27 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "cli/oracle_output.h"
 #include "cli/render_metadata.h"
+#include "cli/render_option_checks.h"
 #include "image/image_writer.h"
 #include "image/stencil_view.h"
 #include "scene/checked_arithmetic.h"
-#include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
+#include "shadow/scene_view.h"
 #include "shadow/soft_lights.h"
 #include "shadow/technique_registry.h"
+#include "views/depth_view.h"
+#include "views/pixel_history.h"
+#include "views/stencil_counts_view.h"
+#include "views/volume_colours.h"
 
 namespace shadowref::cli {
 
 namespace {
-
-// Prints every fragment that reached the watched pixel: the answer to "why is this pixel dark?".
-class PixelHistoryPrinter final : public FragmentObserver {
- public:
-  explicit PixelHistoryPrinter(const std::vector<Instance>& instances) : instances_(instances) {}
-  void onFragment(const FragmentEvent& e) override {
-    std::ostringstream line;
-    line << "draw " << e.drawIndex << "  " << describeTag(e.drawTag) << "  "
-         << (e.facing == FrontFacing ? "front" : "back") << "  z=" << e.depth << " (stored " << e.storedDepth
-         << ")  stencil test " << (e.stencilPassed ? "pass" : "FAIL") << "  depth test "
-         << (!e.stencilPassed ? "-" : e.depthPassed ? "pass" : "FAIL") << "  stencil " << int(e.stencilBefore)
-         << " -> " << int(e.stencilAfter);
-    if (e.colorAfter != e.colorBefore)
-      line << "  colour (" << e.colorAfter.r << ", " << e.colorAfter.g << ", " << e.colorAfter.b << ")";
-    lines_.push_back(line.str());
-  }
-  const std::vector<std::string>& lines() const { return lines_; }
-
- private:
-  std::string describeTag(uint32_t tag) const { return describeDrawTag(tag, instances_); }
-  const std::vector<Instance>& instances_;
-  std::vector<std::string> lines_;
-};
 
 bool parsePixel(const std::string& text, int& x, int& y) {
   char comma = 0;
@@ -144,22 +127,29 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_flag("--quiet", args.quiet, "Print nothing but errors");
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
   render->add_option("--dump", args.dumps,
-                     "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (per light: false-colour "
-                     "PNG with legend, and stencil.L<i> EXR channels), 'depth' (grey PNG), 'shadowmap' (per light: grey PNG "
-                     "and EXR with the Z channel), 'visibility' (per scene light: grey PNG, 1 lit white, 0 in shadow "
+                     "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (volume methods, per light: "
+                     "false-colour PNG with legend, and stencil.L<i> EXR channels), 'depth' (eye depth on a colour map, "
+                     "auto-ranged, with a colour bar), 'shadowmap' (map methods, per light: stored depth likewise, and "
+                     "EXR with the Z channel), 'visibility' (per scene light: grey PNG, 1 lit white, 0 in shadow "
                      "black, and visibility.L<i> EXR channels, for every method)")
       ->check(CLI::IsMember({"passes", "stencil", "depth", "shadowmap", "visibility"}));
   render->add_flag("--oracle", args.oracle,
                    "Per light: the ray-traced visibility (OUT.oracle-L<i>.png) and an error map of the rendered one "
                    "against it (OUT.oracle-errors-L<i>.png); prints agreement and where they differ");
   render->add_option("--dump-region", args.dumpRegion, "x,y,w,h: print the stencil counts of that region per light "
-                                                       "(row 0 is the bottom)");
+                                                       "(row 0 is the bottom; volume methods)");
+  render->add_option("--stencil-view", args.stencilView,
+                     "How stencil counts read in --dump stencil/passes, --dump-region and --pixel-history: 'unsigned' "
+                     "(default: the byte, 255 stays 255) or 'signed' (128..255 as -128..-1, for wrapping ops)")
+      ->check(CLI::IsMember({"unsigned", "signed"}));
   render->add_option("--view", args.view,
-                     "Draw the shadow volumes over the frame: 'volumes' (front faces red, back faces blue, [SV slides]) or "
-                     "'volumes-overlay' (translucent red, [DSS article])")
+                     "Draw the shadow volumes over the frame (volume methods): 'volumes' (front and back faces in two "
+                     "hues per light, away from the scene's colours, [SV slides]) or 'volumes-overlay' (translucent "
+                     "red, [DSS article])")
       ->check(CLI::IsMember({"volumes", "volumes-overlay"}));
   render->add_option("--pixel-history", args.pixelHistory,
-                     "x,y: print every fragment that touched that pixel (rendered by the reference pipeline)");
+                     "x,y: print every fragment that touched that pixel by pass and light, the clears, and each "
+                     "shadow-map lookup (always rendered by the reference pipeline)");
 }
 
 int runRender(const RenderArgs& args) {
@@ -172,6 +162,12 @@ int runRender(const RenderArgs& args) {
   options.pipeline = args.pipeline == "reference" ? PipelineKind::Reference : PipelineKind::Fast;
   if (!checkMethodOrReport(args.method)) return kBadInput;
   options.method = args.method;
+  const ShadowTechnique& technique = args.method.empty() ? techniqueOf(scene->shadow) : *findTechnique(args.method);
+  if (const std::string problem = inapplicableRenderOption(args, technique); !problem.empty()) {
+    std::cerr << problem << '\n';
+    return kBadInput;
+  }
+  const bool signedCounts = args.stencilView == "signed";
   std::vector<std::string> outputs = args.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
   bool anyExr = false;
@@ -195,15 +191,15 @@ int runRender(const RenderArgs& args) {
   }
 
   const std::vector<Instance> instances = scene->instances();
-  PixelHistoryPrinter history(instances);
+  std::optional<views::PixelHistory> history;
   if (!args.pixelHistory.empty()) {
-    if (!parsePixel(args.pixelHistory, options.watchX, options.watchY) || options.watchX < 0 ||
-        options.watchY < 0 || options.watchX >= scene->width || options.watchY >= scene->height) {
+    int x = -1, y = -1;
+    if (!parsePixel(args.pixelHistory, x, y) || x < 0 || y < 0 || x >= scene->width || y >= scene->height) {
       std::cerr << "--pixel-history: expected x,y inside the " << scene->width << "x" << scene->height << " image, got '"
                 << args.pixelHistory << "'\n";
       return kBadInput;
     }
-    options.observer = &history;
+    history.emplace(x, y);
     options.pipeline = PipelineKind::Reference;  // the pixel history's events are the reference's
   }
   const bool dumpPasses = wants(args.dumps, "passes");
@@ -226,13 +222,11 @@ int runRender(const RenderArgs& args) {
   // light's counts at once: their number is bounded before anything is rendered.
   options.keepStencil = (dumpStencil || !region.empty()) && anyExr;
   if (options.keepStencil) {
-    const bool countsInStencil =
-        (options.method.empty() ? techniqueOf(scene->shadow) : *findTechnique(options.method)).countsInStencil;
     uint64_t lights = 0;
     for (const Light& light : scene->lights) lights += expandSoftLight(light).size();
     const std::optional<uint64_t> counts =
         checkedMul(checkedMul(uint64_t(scene->width), uint64_t(scene->height)).value_or(UINT64_MAX), lights);
-    if (countsInStencil && lights > 1 && (!counts || *counts > kMaxKeptStencilCounts)) {
+    if (technique.countsInStencil && lights > 1 && (!counts || *counts > kMaxKeptStencilCounts)) {
       std::cerr << "--dump stencil with an .exr output: the EXR's per-light stencil channels would hold " << lights
                 << " lights x " << scene->width << "x" << scene->height << " counts, more than the limit of "
                 << kMaxKeptStencilCounts << " (2^27); drop the .exr output or the --dump, or render fewer lights or a "
@@ -252,12 +246,14 @@ int runRender(const RenderArgs& args) {
     }
   }
   options.keepShadowMaps = wants(args.dumps, "shadowmap");
-  if (args.view == "volumes") options.volumeView = VolumeViewMode::FrontBack;
+  if (args.view == "volumes") {
+    options.volumeView = VolumeViewMode::FrontBack;
+    options.volumeColours = views::volumeColours(*scene);
+  }
   if (args.view == "volumes-overlay") options.volumeView = VolumeViewMode::Overlay;
   std::vector<std::string> passFiles;
   std::vector<std::string> madeFolders;  // by this render: taken away again if it fails
   std::string grids;  // --dump-region's text, one grid per light, printed after the render
-  size_t stencilPasses = 0;
   try {
     const OutputMetadata metadata = renderMetadata(args, *scene, options);
     const auto showing = [&](std::string content) {
@@ -270,28 +266,25 @@ int runRender(const RenderArgs& args) {
       const size_t at = pass.find("-stencil-");
       if (at != std::string::npos && fb.hasStencil() && (dumpStencil || !region.empty())) {
         const std::string light = pass.substr(at + 9);
-        ++stencilPasses;
         if (dumpStencil) {
-          StencilViewOptions view;
-          view.signedCounts = true;  // wrapping ops store -1 as 255
           const std::string path = siblingPath(outputs.front(), "stencil-" + light);
           ensureParentDirectory(path, &madeFolders);
-          writeStencilPng(fb.stencil(), fb.width(), fb.height(), path, view, showing("stencil " + light));
+          views::writeViewPng(views::stencilView(fb.stencil(), fb.width(), fb.height(), {.signedCounts = signedCounts}),
+                              path, showing("stencil " + light));
           passFiles.push_back(path);
         }
         if (!region.empty())
           grids += "light " + light + ":\n" +
                    stencilGrid(fb.stencil(), fb.width(), fb.height(), int(region[0]), int(region[1]), int(region[2]),
-                               int(region[3]), true);
+                               int(region[3]), signedCounts);
       }
       if (!dumpPasses) return;
       const std::string path = siblingPath(outputs.front(), "pass-" + pass);
       ensureParentDirectory(path, &madeFolders);
       // A volume pass changes only the stencil buffer: its picture is the stencil counts.
       if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
-        StencilViewOptions view;
-        view.signedCounts = true;
-        writeStencilPng(fb, path, view, showing("pass " + pass));
+        views::writeViewPng(views::stencilView(fb.stencil(), fb.width(), fb.height(), {.signedCounts = signedCounts}),
+                            path, showing("pass " + pass));
       } else if (fb.hasColor()) {
         writePng(fb, path, false, showing("pass " + pass));
       } else {
@@ -299,6 +292,7 @@ int runRender(const RenderArgs& args) {
       }
       passFiles.push_back(path);
     };
+    if (history) history->attach(options);  // after onPass: its own is called first
     const FrameResult frame = renderFrame(*scene, options);
     // The EXR's ZIP blocks compress on as many threads as a fast frame renders on (same bytes).
     if (anyExr || options.keepShadowMaps) setImageWriterThreads(pipelineThreads(PipelineKind::Fast, options.threads));
@@ -317,13 +311,14 @@ int runRender(const RenderArgs& args) {
       writeOutput(frame, out, extras, frameMetadata, madeFolders);
       if (!args.quiet) std::cerr << "wrote " << out << '\n';
     }
-    if (dumpStencil && stencilPasses == 0 && !args.quiet)
-      std::cerr << "--dump stencil: this method uses no stencil buffer\n";
     if (wants(args.dumps, "depth") && frame.framebuffer.hasDepth()) {
       std::vector<float> depth(frame.framebuffer.depthCodes().size());
       for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(frame.framebuffer.depthCodec().decode(frame.framebuffer.depthCodes()[i]));
       const std::string path = siblingPath(outputs.front(), "depth");
-      writeGreyPng(depth, scene->width, scene->height, path, 0.0f, 1.0f, showing("depth"));
+      // The camera the technique drew with: volumes need P_inf ([Kuhn 2016, §3.3]).
+      const SceneView camera = makeCameraView(*scene, technique.drawsVolumes);
+      views::writeViewPng(views::depthView(depth, scene->width, scene->height, camera.projection, camera.viewport), path,
+                          showing("depth"));
       passFiles.push_back(path);
     }
     for (size_t i = 0; i < frame.visibility.size(); ++i) {
@@ -338,7 +333,8 @@ int runRender(const RenderArgs& args) {
       const DepthTexture& map = frame.shadowMaps[i];
       const std::string png = siblingPath(outputs.front(), "shadowmap-" + frame.shadowMapNames[i]);
       const std::vector<float> depth = map.values();
-      writeGreyPng(depth, map.width, map.height, png, 0.0f, 1.0f, showing("shadow map " + frame.shadowMapNames[i]));
+      views::writeViewPng(views::shadowMapView(depth, map.width, map.height), png,
+                          showing("shadow map " + frame.shadowMapNames[i]));
       Framebuffer holder(map.width, map.height);
       ExrExtras z;
       z.channels.push_back(NamedChannel::floatChannel("Z", depth));
@@ -352,8 +348,6 @@ int runRender(const RenderArgs& args) {
       writeOracleOutputs(*scene, method, frame, [&](const std::string& s) { return siblingPath(outputs.front(), s); },
                          passFiles, std::cout);
     }
-    if (wants(args.dumps, "shadowmap") && frame.shadowMaps.empty() && !args.quiet)
-      std::cerr << "--dump shadowmap: this method renders no shadow map\n";
     std::cout << grids;
     if (!args.quiet)
       for (const std::string& p : passFiles) std::cerr << "wrote " << p << '\n';
@@ -363,10 +357,11 @@ int runRender(const RenderArgs& args) {
     std::cerr << "render: " << e.what() << '\n';
     return kFailed;
   }
-  if (options.observer) {
-    std::cout << "pixel " << options.watchX << "," << options.watchY << " (row 0 is the bottom): "
-              << history.lines().size() << " fragments\n";
-    for (const std::string& line : history.lines()) std::cout << "  " << line << '\n';
+  if (history) {
+    std::vector<std::string> lightNames;  // L<i>: the lights as the passes number them, soft ones expanded
+    for (const Light& light : scene->lights)
+      for (const Light& l : expandSoftLight(light)) lightNames.push_back(l.name);
+    std::cout << history->text(instances, lightNames, signedCounts);
   }
   return kSuccess;
 }

@@ -26,6 +26,7 @@ struct RenderArgs {
   std::string pixelHistory;          // "x,y"
   std::string exrCompression = "rle";  // none, rle, zip
   bool oracle = false;               // per light: the ray-traced visibility and an error map
+  std::string stencilView;           // "", unsigned, signed: how stencil bytes read ("": unsigned)
 };
 
 void addRenderCommand(CLI::App& app, RenderArgs& args);

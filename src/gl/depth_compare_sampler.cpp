@@ -20,14 +20,12 @@ DepthTexture DepthTexture::filled(int width, int height, float depth) {
   return t;
 }
 
-namespace {
 int nearestTexel(double coordinate, int size) {
   // GL nearest: floor(s * size), then clamp to edge.
   const double t = std::floor(coordinate * double(size));
   if (!(t >= 0.0)) return 0;  // also NaN
   return int(std::min(t, double(size - 1)));
 }
-}  // namespace
 
 double DepthCompareSampler::compareTexel(int x, int y, double r) const {
   x = std::clamp(x, 0, texture->width - 1);

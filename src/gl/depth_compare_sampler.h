@@ -31,6 +31,10 @@ struct DepthTexture {
   size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
 };
 
+// The texel GL_NEAREST picks along one axis of `size` texels: floor(coordinate · size), clamped to
+// the edge (NaN and negatives to 0), as every sample below picks it.
+int nearestTexel(double coordinate, int size);
+
 struct DepthCompareSampler {
   const DepthTexture* texture = nullptr;
   CompareFunc func = CompareFunc::LEqual;

@@ -2,7 +2,9 @@
 // decided and what the buffers held before and after. It answers "why is this pixel in shadow?".
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 
 #include <glm/glm.hpp>
 
@@ -20,12 +22,28 @@ struct FragmentEvent {
   bool scissorPassed = true, stencilPassed = true, depthPassed = true;
   uint8_t stencilBefore = 0, stencilAfter = 0;
   glm::vec4 colorBefore{0.0f}, colorAfter{0.0f};
+  // The shader's first varyings, interpolated as the shader read them, when the fragment was shaded
+  // and its shader reads at least three: the scene's shaders keep the world position there
+  // (gl/lighting.h, kVaryingPosition), which a shadow-map lookup starts from.
+  int varyingCount = 0;
+  std::array<double, 3> varyings{};
+};
+
+// A glClear that covered the watched pixel: what each buffer it clears held there before and after
+// (only the buffers the request names, each nullopt otherwise).
+struct ClearEvent {
+  int x = 0, y = 0;
+  std::optional<uint8_t> stencilBefore, stencilAfter;
+  std::optional<double> depthBefore, depthAfter;
+  bool color = false;
 };
 
 class FragmentObserver {
  public:
   virtual ~FragmentObserver() = default;
   virtual void onFragment(const FragmentEvent& event) = 0;
+  // A clear that reached the watched pixel; observers that only follow fragments ignore it.
+  virtual void onClear(const ClearEvent& event) {}
 };
 
 // The watched pixel of a draw: its fragments are reported to `observer` (nullptr: none), with the

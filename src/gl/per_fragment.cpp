@@ -84,7 +84,15 @@ void processFragment(Framebuffer& fb, const RenderState& state, const FragmentSh
     const glm::dvec4 src = shadeFragment(*shader, t, x, y, fb.depthCodec().decode(zCode), p.e[0], p.e[1], p.e[2]);
     dst = writeColor(dst, blend(state.blend, src, glm::dvec4(dst)), state.colorMask);
     ++stats.colorWrites;
-    if (watched) event.colorAfter = dst;
+    if (watched) {
+      event.colorAfter = dst;
+      if (shader->varyingCount() >= 3) {
+        double varyings[kMaxVaryings];
+        interpolateVaryings(t, p.e[0], p.e[1], p.e[2], shader->varyingCount(), varyings);
+        event.varyingCount = 3;
+        event.varyings = {varyings[0], varyings[1], varyings[2]};
+      }
+    }
   }
   if (watched) watch->observer->onFragment(event);
 }

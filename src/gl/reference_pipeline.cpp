@@ -4,7 +4,35 @@
 
 namespace shadowref {
 
-void ReferencePipeline::clear(const ClearRequest& request) { shadowref::clear(fb_, request); }
+void ReferencePipeline::clear(const ClearRequest& request) {
+  // The pixel history sees a clear of the watched pixel with what its buffers held before and after.
+  const bool watched = watch_.observer && watch_.x >= 0 && watch_.y >= 0 && watch_.x < fb_.width() &&
+                       watch_.y < fb_.height();
+  ClearEvent event;
+  const size_t at = watched ? fb_.index(watch_.x, watch_.y) : 0;
+  if (watched) {
+    event.x = watch_.x;
+    event.y = watch_.y;
+    event.color = request.color.has_value();
+    if (request.stencil && fb_.hasStencil()) event.stencilBefore = fb_.stencil()[at];
+    if (request.depth && fb_.hasDepth()) event.depthBefore = fb_.depthCodec().decode(fb_.depthCodes()[at]);
+  }
+  shadowref::clear(fb_, request);
+  if (!watched) return;
+  const Rect region = clearRegion(fb_, request.state);
+  if (watch_.x < region.x || watch_.x >= region.x + region.width || watch_.y < region.y ||
+      watch_.y >= region.y + region.height)
+    return;
+  if (request.stencil) {
+    if (!event.stencilBefore) event.stencilBefore = 0;  // a buffer this clear makes held nothing: 0
+    event.stencilAfter = fb_.stencil()[at];
+  }
+  if (request.depth) {
+    if (!event.depthBefore) event.depthBefore = 1.0;  // likewise: the far end
+    event.depthAfter = fb_.depthCodec().decode(fb_.depthCodes()[at]);
+  }
+  watch_.observer->onClear(event);
+}
 
 void ReferencePipeline::draw(const DrawCall& call) {
   const RenderState& state = *call.state;

@@ -3,6 +3,7 @@
 // in order.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <span>
@@ -19,6 +20,7 @@
 namespace shadowref {
 
 struct ShadowTechnique;
+struct LightShadow;
 
 // Teaching views of the volumes drawn over the finished frame.
 enum class VolumeViewMode : uint8_t {
@@ -52,6 +54,14 @@ struct FrameOptions {
   // Compute each scene light's visibility (shadow/visibility.h) into FrameResult::visibility.
   bool keepVisibility = false;
   VolumeViewMode volumeView = VolumeViewMode::None;
+  // VolumeViewMode::FrontBack: the colours of each scene light's front and back faces (a soft
+  // light's samples share their light's), in scene.lights' order; a light beyond the list, or an
+  // empty list, gets red and blue ([SV slides]).
+  std::vector<std::array<glm::dvec3, 2>> volumeColours;
+  // Shadow-map techniques: called before each camera pass with the lights' shadows it looks up
+  // (one per light of that accumulation frame, in scene.lights' order); they stay valid until the
+  // pass has ended. The pixel history traces the watched pixel's lookups with them.
+  std::function<void(std::span<const LightShadow* const>)> onShadowLookups;
 };
 
 struct PassTiming {

@@ -314,6 +314,11 @@ void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions
       }
     }
     pipeline.clear({.state = state, .color = glm::vec4(glm::vec3(scene.background), 1.0f), .depth = 1.0});
+    if (options.onShadowLookups) {
+      std::vector<const LightShadow*> looked;
+      for (const auto& sh : shadows) looked.push_back(sh.get());
+      options.onShadowLookups(looked);
+    }
     if (!drawCameraPass(pipeline, state, scene, view, prepared, shadows) && k == 0)
       result.notes.push_back("Gouraud materials lit per pixel: more than " +
                              std::to_string(ShadowMappedGouraudShader::kMaxLights) + " shadow-mapped lights");
@@ -398,6 +403,7 @@ extern const ShadowTechnique kShadowMapTechnique{
     .summary = "shadow maps: a depth map per light, compared per fragment [Williams 1978], [Hempe 2004, §3.1]",
     .settings = kStandardSettings,
     .countsInStencil = false,
+    .rendersShadowMaps = true,
     .render = renderMapsOfKind<ShadowMapKind::Standard>,
     .describe = describeStandardSettings,
 };
@@ -407,6 +413,7 @@ extern const ShadowTechnique kTrapezoidalTechnique{
     .summary = "trapezoidal shadow maps: the map warped to the view frustum's trapezoid [Martin & Tan 2004], [Hempe 2004, §4.1]",
     .settings = kTrapezoidalSettings,
     .countsInStencil = false,
+    .rendersShadowMaps = true,
     .render = renderMapsOfKind<ShadowMapKind::Trapezoidal>,
     .describe = describeTrapezoidalSettings,
 };

@@ -29,6 +29,12 @@ struct ShadowTechnique {
   // Draws one stencil count per light (FrameResult::stencilPerLight with keepStencil, the passes
   // named "NN-stencil-L<i>"): --dump stencil and the EXR's stencil channels have something to show.
   bool countsInStencil = false;
+  // Draws shadow volumes (with the camera's infinite projection P_inf, [Kuhn 2016, §3.3]): --view
+  // volumes and volumes-overlay have something to draw.
+  bool drawsVolumes = false;
+  // Renders a depth map per light (FrameResult::shadowMaps with keepShadowMaps, the lookups of
+  // FrameOptions::onShadowLookups): --dump shadowmap has something to show.
+  bool rendersShadowMaps = false;
   // The whole frame: clears and draws every pass into the pipeline's framebuffer, reports the passes
   // through options.onPass and adds timings and notes to result. renderFrame made the pipeline
   // for result.framebuffer and adds its statistics afterwards.

@@ -147,12 +147,15 @@ LightTotals drawVolumePass(Pipeline& pipeline, const RenderState& base, const Sc
   return totals;
 }
 
-// Teaching views: front faces red / back faces blue ([SV slides]), or translucent red volumes
-// ([DSS article]). One pass a light: its casters' volumes built into `volumes` (the frame's), then
-// drawn in the casters' order.
+// Teaching views: front faces red / back faces blue ([SV slides]), or each scene light's own pair
+// of colours (FrameOptions::volumeColours); or translucent red volumes ([DSS article]). One pass
+// a light: its casters' volumes built into `volumes` (the frame's), then drawn in the casters'
+// order. owner[i]: the scene light lights[i] came from.
 void drawVolumeView(Pipeline& pipeline, const RenderState& base, const Scene& scene, const SceneView& view,
-                    std::span<const PreparedInstance> prepared, const std::vector<Light>& lights, VolumeCounting method,
-                    VolumeViewMode mode, std::vector<VolumeDraw>& volumes) {
+                    std::span<const PreparedInstance> prepared, const std::vector<Light>& lights,
+                    const std::vector<size_t>& owner, VolumeCounting method, const FrameOptions& options,
+                    std::vector<VolumeDraw>& volumes) {
+  const VolumeViewMode mode = options.volumeView;
   RenderState state = base;
   state.depthTest = true;
   state.depthFunc = CompareFunc::Less;
@@ -166,7 +169,16 @@ void drawVolumeView(Pipeline& pipeline, const RenderState& base, const Scene& sc
                    frontFaces = culling(CullMode::Back);
   const ConstantColorShader red({1.0, 0.0, 0.0, mode == VolumeViewMode::Overlay ? 0.3 : 0.45});
   const ConstantColorShader blue({0.0, 0.2, 1.0, 0.45});
-  for (const Light& light : lights) {
+  for (size_t l = 0; l < lights.size(); ++l) {
+    const Light& light = lights[l];
+    std::optional<ConstantColorShader> ownFront, ownBack;
+    if (owner[l] < options.volumeColours.size()) {
+      const std::array<glm::dvec3, 2>& c = options.volumeColours[owner[l]];
+      ownFront.emplace(glm::dvec4(c[0], 0.45));
+      ownBack.emplace(glm::dvec4(c[1], 0.45));
+    }
+    const ConstantColorShader& front = ownFront ? *ownFront : red;
+    const ConstantColorShader& back = ownBack ? *ownBack : blue;
     std::vector<const PreparedInstance*> casters;
     for (const PreparedInstance& p : prepared)
       if (castsFor(p, light)) casters.push_back(&p);
@@ -179,8 +191,8 @@ void drawVolumeView(Pipeline& pipeline, const RenderState& base, const Scene& sc
         volumes[i].drawAll(pipeline, overlay, p.index, &red);
         continue;
       }
-      volumes[i].drawAll(pipeline, backFaces, p.index, &blue);
-      volumes[i].drawAll(pipeline, frontFaces, p.index, &red);
+      volumes[i].drawAll(pipeline, backFaces, p.index, &back);
+      volumes[i].drawAll(pipeline, frontFaces, p.index, &front);
     }
     pipeline.endPass();
   }
@@ -305,7 +317,7 @@ void renderShadowVolumes(const Scene& scene, VolumeCounting method, const FrameO
 
   if (options.volumeView != VolumeViewMode::None) {
     pass(options.volumeView == VolumeViewMode::Overlay ? "volumes-overlay" : "volumes", [&] {
-      drawVolumeView(pipeline, base, scene, view, prepared, lights, method, options.volumeView, volumes);
+      drawVolumeView(pipeline, base, scene, view, prepared, lights, owner, method, options, volumes);
     });
   }
 }
@@ -339,6 +351,7 @@ extern const ShadowTechnique kZPassTechnique{
     .summary = "stencil shadow volumes counted from the eye (z-pass) [Heidmann 1991], [Kuhn 2016, §3.2]",
     .settings = kVolumeSettings,
     .countsInStencil = true,
+    .drawsVolumes = true,
     .render = renderVolumesCounting<VolumeCounting::ZPass>,
     .describe = describeVolumeSettings,
 };
@@ -348,6 +361,7 @@ extern const ShadowTechnique kZFailTechnique{
     .summary = "stencil shadow volumes counted behind the surface, capped (z-fail) [Everitt & Kilgard 2002], [Kuhn 2016, §3.4]",
     .settings = kVolumeSettings,
     .countsInStencil = true,
+    .drawsVolumes = true,
     .render = renderVolumesCounting<VolumeCounting::ZFail>,
     .describe = describeVolumeSettings,
 };
@@ -357,6 +371,7 @@ extern const ShadowTechnique kAutoTechnique{
     .summary = "stencil shadow volumes, z-fail only for the casters in the occlusion pyramid [McGuire et al. 2003], [Kuhn 2016, §4.2.1]",
     .settings = kVolumeSettings,
     .countsInStencil = true,
+    .drawsVolumes = true,
     .render = renderVolumesCounting<VolumeCounting::PerCaster>,
     .describe = describeVolumeSettings,
 };

@@ -30,6 +30,7 @@ const std::vector<IncludeRule> kRules = {
     {"src/cli", {"exec/"}},
     {"src/scene", {"exec/"}},
     {"src/image", {"exec/"}},
+    {"src/views", {"exec/"}},
     {"src/api", {"exec/"}},
     {"src/oracle", {"exec/"}},
 };
