@@ -1,4 +1,4 @@
-// What the tests that hold frames and shadow maps against the ray-cast oracle (support/oracle)
+// What the tests that hold frames and shadow maps against the ray-cast oracle (src/oracle)
 // set up alike: a scene of scenes/ at a test's image size, the lights the volume renderer draws,
 // a frame with its stencil kept, the oracle cast as the volume renderer projects, and one light's
 // shadow map built as a frame builds it.
