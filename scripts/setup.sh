@@ -4,7 +4,7 @@
 #   scripts/setup.sh [--role render|test|bench] [BUILD_DIR] [extra cmake args...]
 # Roles, each including the one before:
 #   render  the compiler, CMake and the libraries the CLI links (glm, yaml-cpp, tinygltf, CLI11,
-#           libpng, OpenEXR, nettle); builds only the CLI (scripts/render-default.sh)
+#           libpng, OpenEXR, nettle, cpp-httplib); builds only the CLI (scripts/render-default.sh)
 #   test    + OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
 #           OSMesa (the conformance tests), clang and its runtimes (fuzzing); builds everything
 #           (scripts/test.sh)
@@ -21,9 +21,9 @@ fi
 render_packages=(
   build-essential cmake ninja-build pkg-config ccache
   libglm-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  libpng-dev libopenexr-dev nettle-dev
+  libpng-dev libopenexr-dev nettle-dev libcpp-httplib-dev
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev)
+test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev chromium)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in
   render) packages=("${render_packages[@]}") ;;
