@@ -6,7 +6,8 @@
 #   render  the compiler, CMake and the libraries the CLI links (glm, yaml-cpp, tinygltf, CLI11,
 #           libpng, OpenEXR, nettle, cpp-httplib); builds only the CLI (scripts/render-default.sh)
 #   test    + OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
-#           OSMesa (the conformance tests), clang and its runtimes (fuzzing); builds everything
+#           OSMesa (the conformance tests), clang and its runtimes (fuzzing), Chromium and
+#           tests/browser's npm packages (the explorer's browser test); builds everything
 #           (scripts/test.sh)
 #   bench   + gnuplot, hyperfine and GNU time, for the benchmark scripts (scripts/bench-*.sh)
 # Without --role: bench, i.e. everything.
@@ -40,6 +41,20 @@ if ((${#missing[@]})); then
   SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# The browser test's driver (tests/browser/: puppeteer-core, pinned by its package-lock.json) for
+# the Chromium above; npm ci again only when the lock file is newer than what it installed.
+if [ "$role" != render ]; then
+  lock=tests/browser/package-lock.json
+  if ! command -v npm >/dev/null; then
+    echo "setup: installing npm" >&2
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+  fi
+  if [ ! -f tests/browser/node_modules/.package-lock.json ] || [ $lock -nt tests/browser/node_modules/.package-lock.json ]; then
+    (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
+  fi
 fi
 
 build_dir=${1:-build}

@@ -64,6 +64,9 @@ function showError(text) {
 // ---- frames: one in flight, the newest state next
 let inFlight = false, dirty = false, version = 0, shownVersion = 0;
 const inputTimes = new Map();  // state version -> time of the input that made it
+// For the tests: whether the picture shows the newest state, and the state's -D values.
+window.exploreIdle = () => !inFlight && !dirty;
+window.exploreOverrides = () => overrides();
 
 function changed() {
   version += 1;
