@@ -1,8 +1,9 @@
 // The explorer's page. Every state is a list of `-D key=value` overrides, exactly as
 // `shadowref render` takes them: the server renders the state, and the same -D values on the
-// command line give the same picture. Only one frame request is in flight at a time; input that
-// arrives meanwhile only marks the state as changed, so the newest state is rendered next and no
-// stale frame queues up.
+// command line give the same picture. At most two frame requests are in flight (the server renders
+// one while the other's pixels travel); input that arrives meanwhile only marks the state as
+// changed, so the newest state is rendered next, no stale frame queues up, and a frame older than
+// the one shown is dropped.
 'use strict';
 
 const $ = (id) => document.getElementById(id);
@@ -61,11 +62,12 @@ function showError(text) {
   box.textContent = text || '';
 }
 
-// ---- frames: one in flight, the newest state next
-let inFlight = false, dirty = false, version = 0, shownVersion = 0;
+// ---- frames: at most two in flight (one rendering while the other travels), the newest state next
+const kMaxInFlight = 2;
+let inFlight = 0, dirty = false, version = 0, shownVersion = 0;
 const inputTimes = new Map();  // state version -> time of the input that made it
 // For the tests: whether the picture shows the newest state, and the state's -D values.
-window.exploreIdle = () => !inFlight && !dirty;
+window.exploreIdle = () => inFlight === 0 && !dirty;
 window.exploreOverrides = () => overrides();
 
 function changed() {
@@ -73,42 +75,46 @@ function changed() {
   inputTimes.set(version, performance.now());
   dirty = true;
   $('state').textContent = overrides().map((o) => '-D ' + o).join(' ') || '(the scene as written)';
-  if (!inFlight) pump();
+  if (inFlight < kMaxInFlight) pump();
 }
 
 async function pump() {
   if (!dirty) return;
   dirty = false;
-  inFlight = true;
+  inFlight += 1;
   const asked = version;
   const params = { view: state.view, seq: asked };
   if (['stencil', 'shadowmap', 'visibility', 'pass'].includes(state.view)) params.index = state.index;
   if (state.signed) params.signed = 1;
   try {
     const response = await fetch('api/frame?' + query(params), { cache: 'no-store' });
-    if (response.status === 204) {
-      exploreStats.superseded += 1;
+    if (response.status === 204 || asked < shownVersion) {
+      exploreStats.superseded += 1;  // a newer state was asked for, or is shown already
     } else if (!response.ok) {
       exploreStats.errors += 1;
       showError(await response.text());
     } else {
       const buffer = await response.arrayBuffer();
-      showError('');
-      drawFrame(response.headers, buffer);
-      exploreStats.framesShown += 1;
-      exploreStats.serverMs.push(Number(response.headers.get('X-Load-Ms')) + Number(response.headers.get('X-Render-Ms')));
-      const t = inputTimes.get(asked);
-      if (t !== undefined && asked > shownVersion) exploreStats.latencyMs.push(performance.now() - t);
-      for (const k of inputTimes.keys()) if (k <= asked) inputTimes.delete(k);
-      shownVersion = asked;
-      $('status').textContent = 'server ' + num(exploreStats.serverMs[exploreStats.serverMs.length - 1]) + ' ms';
+      if (asked > shownVersion) {
+        showError('');
+        drawFrame(response.headers, buffer);
+        exploreStats.framesShown += 1;
+        exploreStats.serverMs.push(Number(response.headers.get('X-Load-Ms')) + Number(response.headers.get('X-Render-Ms')));
+        const t = inputTimes.get(asked);
+        if (t !== undefined) exploreStats.latencyMs.push(performance.now() - t);
+        for (const k of inputTimes.keys()) if (k <= asked) inputTimes.delete(k);
+        shownVersion = asked;
+        $('status').textContent = 'server ' + num(exploreStats.serverMs[exploreStats.serverMs.length - 1]) + ' ms';
+      } else {
+        exploreStats.superseded += 1;
+      }
     }
   } catch (e) {
     exploreStats.errors += 1;
     showError('the server does not answer: ' + e);
   }
-  inFlight = false;
-  if (dirty) pump();
+  inFlight -= 1;
+  if (dirty && inFlight < kMaxInFlight) pump();
 }
 
 function drawFrame(headers, buffer) {
