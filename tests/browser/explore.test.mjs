@@ -2,7 +2,7 @@
 // in headless Chromium, orbits, switches method and view with the documents' keys, clicks a pixel
 // and reads its history, compares the picture on the screen with `shadowref render` for the same
 // -D values, and checks that bad requests get a 400 and a broken scene its file:line:col on the
-// page. It saves screenshots of the walk-through in docs/teaching.md into SCREENSHOT_DIR.
+// page, and that --export's handout works from file:// with no server. It saves screenshots of the walk-through in docs/teaching.md into SCREENSHOT_DIR.
 //   node tests/browser/explore.test.mjs SHADOWREF_BINARY [SCREENSHOT_DIR]
 // Run from the source folder (ctest does; label "browser").
 import assert from 'node:assert/strict';
@@ -174,6 +174,26 @@ try {
   } finally {
     assert.equal(await stopExplorer(brokenServer, 'SIGTERM'), 0, 'SIGTERM stops the server cleanly');
   }
+
+  // The handout: --export's folder opened from the file system, no server.
+  const handout = path.join(scratch, 'handout');
+  execFileSync(binary, ['explore', 'scenes/pumpkins.yaml', '--export', handout, '-D', 'shadow.method=zpass',
+    '-D', 'image.width=400', '-D', 'image.height=320'], { stdio: 'ignore' });
+  const p3 = await browser.newPage();
+  p3.on('pageerror', (e) => { failed = true; console.error('handout page error:', e.message); });
+  await p3.goto('file://' + path.join(handout, 'index.html'));
+  await waitForFrames(p3, 1);
+  await p3.select('#view', 'stencil-0');
+  await waitForFrames(p3, 2);
+  const hb = await imageBox(p3);
+  await p3.mouse.move(hb.x + 200.5, hb.y + 150.5);
+  const probe = await p3.$eval('#probe', (e) => e.textContent);
+  assert.ok(/^pixel 200,169 .*count \d+$/.test(probe), 'hovering the handout shows the count: ' + probe);
+  await p3.mouse.click(hb.x + 200.5, hb.y + 150.5);
+  await p3.waitForSelector('#history table');
+  const handoutRows = await p3.$$eval('#history table tr', (r) => r.length - 1);
+  assert.ok(handoutRows >= 4, 'the handout lists the pixel in every view with values');
+  step(`handout from file://: ${probe}; ${handoutRows} views at the clicked pixel`);
 } catch (e) {
   failed = true;
   console.error(e);
