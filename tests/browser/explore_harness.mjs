@@ -58,8 +58,15 @@ export async function pressAndWait(page, key) {
 }
 
 // Waits until no frame is in flight and none is wanted: the picture shows the newest state.
+// Chromium may hand a mouse move to the page up to a frame after puppeteer's call returned, so the
+// page must stay idle across a pause.
 export async function settle(page, timeout = 30000) {
-  await page.waitForFunction(() => window.exploreIdle && window.exploreIdle(), { timeout, polling: 20 });
+  for (;;) {
+    await page.waitForFunction(() => window.exploreIdle && window.exploreIdle(), { timeout, polling: 20 });
+    const shown = await framesShown(page);
+    await new Promise((r) => setTimeout(r, 150));
+    if (await page.evaluate((n) => window.exploreIdle() && window.exploreStats.framesShown === n, shown)) return;
+  }
 }
 
 // The centre of the picture in page coordinates.
