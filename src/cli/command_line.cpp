@@ -20,7 +20,8 @@ void addCommands(CLI::App& app, CommandArgs& args) {
   addBenchCommand(app, args.bench);
   addExploreCommand(app, args.explore);
   app.footer("Exit status: 0 success, 1 a failed render or comparison, 2 bad usage or bad input;\n"
-             "130 / 143 after SIGINT / SIGTERM, which remove any half-written temporary file.");
+             "130 / 143 after SIGINT / SIGTERM, which remove any half-written temporary file\n"
+             "(explore: SIGINT and SIGTERM are how its server stops, with 0).");
 }
 
 std::optional<int> parseCommandLine(CLI::App& app, int argc, const char* const* argv) {
