@@ -5,6 +5,9 @@
 #include <signal.h>
 
 #include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <future>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +21,7 @@
 #include "explore/scene_save.h"
 #include "explore/views_adapter.h"
 #include "image/image_writer.h"
+#include "memory/allocator_tuning.h"
 #include "scene/input_file.h"
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
@@ -55,11 +59,35 @@ class Explorer {
   explicit Explorer(const ExploreOptions& options)
       : options_(options), pipelines_(makePipelineMaker(PipelineKind::Fast, options.threads)) {}
 
-  std::mutex& renderLock() { return render_; }
+  ~Explorer() {
+    {
+      std::lock_guard lock(queueLock_);
+      stopping_ = true;
+    }
+    queued_.notify_one();
+    if (renderer_.joinable()) renderer_.join();
+  }
+
+  // Runs `job` on the one render thread and waits for it, rethrowing what it throws. One thread
+  // renders every frame: one request at a time (each frame already uses every core), and the
+  // memory a frame frees stays with the thread that allocates the next (glibc keeps an arena per
+  // thread), so that consecutive frames reuse their buffers instead of faulting in fresh pages.
+  template <class F>
+  void onRenderThread(F&& job) {
+    std::packaged_task<void()> task(std::forward<F>(job));
+    std::future<void> done = task.get_future();
+    {
+      std::lock_guard lock(queueLock_);
+      if (!renderer_.joinable()) renderer_ = std::thread([this] { renderLoop(); });
+      queue_.push_back(&task);
+    }
+    queued_.notify_one();
+    done.get();
+  }
   const PipelineMaker& pipelines() const { return *pipelines_; }
 
   // The scene for the explore command's -D followed by the request's; a SceneError is a bad request
-  // (the message is its file:line:col). Call with renderLock held.
+  // (the message is its file:line:col). Call on the render thread.
   std::shared_ptr<const Scene> scene(const std::vector<std::string>& requestOverrides) {
     std::vector<std::string> all = options_.overrides;
     all.insert(all.end(), requestOverrides.begin(), requestOverrides.end());
@@ -94,7 +122,7 @@ class Explorer {
   std::string sourceName() const { return options_.scene.empty() ? kBuiltinName : options_.scene; }
   const std::vector<std::string>& baseOverrides() const { return options_.overrides; }
 
-  // The newest frame request: an older one still waiting for the lock is not rendered.
+  // The newest frame request: an older one still waiting for the render thread is not rendered.
   std::atomic<uint64_t> latestFrame{0};
 
  private:
@@ -143,7 +171,25 @@ class Explorer {
   const ExploreOptions& options_;
   std::shared_ptr<const Scene> base_;  // the scene with the explore command's -D
   std::unique_ptr<PipelineMaker> pipelines_;
-  std::mutex render_;
+  void renderLoop() {
+    for (;;) {
+      std::packaged_task<void()>* task = nullptr;
+      {
+        std::unique_lock lock(queueLock_);
+        queued_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        if (queue_.empty()) return;
+        task = queue_.front();
+        queue_.pop_front();
+      }
+      (*task)();
+    }
+  }
+
+  std::mutex queueLock_;
+  std::condition_variable queued_;
+  std::deque<std::packaged_task<void()>*> queue_;
+  bool stopping_ = false;
+  std::thread renderer_;
   std::shared_ptr<const Scene> cached_;
   std::string cachedKey_;
 };
@@ -207,16 +253,17 @@ void addRoutes(httplib::Server& server, Explorer& explorer) {
   server.Get("/api/scene", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
       const ExploreRequest r = parsed(req, {"D"});
-      std::lock_guard lock(explorer.renderLock());
-      nlohmann::json out;
-      try {
-        out = sceneSummary(*explorer.scene(r.overrides));
-      } catch (const BadRequest& e) {
-        if (!r.overrides.empty()) throw;
-        out["error"] = e.what();
-      }
-      out["baseOverrides"] = explorer.baseOverrides();
-      res.set_content(out.dump(), "application/json");
+      explorer.onRenderThread([&] {
+        nlohmann::json out;
+        try {
+          out = sceneSummary(*explorer.scene(r.overrides));
+        } catch (const BadRequest& e) {
+          if (!r.overrides.empty()) throw;
+          out["error"] = e.what();
+        }
+        out["baseOverrides"] = explorer.baseOverrides();
+        res.set_content(out.dump(), "application/json");
+      });
     });
   });
   // One view as raw bytes: RGBA, top row first, then (X-Values) one float32 per pixel. Raw pixels
@@ -225,60 +272,64 @@ void addRoutes(httplib::Server& server, Explorer& explorer) {
     answer(res, [&] {
       const ExploreRequest r = parsed(req, {"D", "view", "index", "signed", "seq"});
       const uint64_t ticket = ++explorer.latestFrame;
-      std::lock_guard lock(explorer.renderLock());
-      if (ticket != explorer.latestFrame.load()) {  // a newer state came in while this one waited
-        res.status = 204;
-        res.set_header("X-Superseded", "1");
-        return;
-      }
-      const Clock::time_point start = Clock::now();
-      const std::shared_ptr<const Scene> scene = explorer.scene(r.overrides);
-      const double loadMs = msSince(start);
-      ViewImage image = renderView(*scene, r.view, explorer.pipelines());
-      const double renderMs = msSince(start) - loadMs;
-      std::string body(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size());
-      if (!image.values.empty())
-        body.append(reinterpret_cast<const char*>(image.values.data()), image.values.size() * sizeof(float));
-      res.set_header("X-Width", std::to_string(image.width));
-      res.set_header("X-Height", std::to_string(image.height));
-      res.set_header("X-Values", image.values.empty() ? "" : image.valueName);
-      res.set_header("X-Info", image.info.dump(-1, ' ', true));
-      res.set_header("X-Load-Ms", std::to_string(loadMs));
-      res.set_header("X-Render-Ms", std::to_string(renderMs));
-      if (const auto it = req.params.find("seq"); it != req.params.end()) res.set_header("X-Seq", it->second);
-      res.set_header("Cache-Control", "no-store");
-      res.set_content(std::move(body), "application/octet-stream");
+      explorer.onRenderThread([&] {
+        if (ticket != explorer.latestFrame.load()) {  // a newer state came in while this one waited
+          res.status = 204;
+          res.set_header("X-Superseded", "1");
+          return;
+        }
+        const Clock::time_point start = Clock::now();
+        const std::shared_ptr<const Scene> scene = explorer.scene(r.overrides);
+        const double loadMs = msSince(start);
+        ViewImage image = renderView(*scene, r.view, explorer.pipelines());
+        const double renderMs = msSince(start) - loadMs;
+        std::string body(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size());
+        if (!image.values.empty())
+          body.append(reinterpret_cast<const char*>(image.values.data()), image.values.size() * sizeof(float));
+        res.set_header("X-Width", std::to_string(image.width));
+        res.set_header("X-Height", std::to_string(image.height));
+        res.set_header("X-Values", image.values.empty() ? "" : image.valueName);
+        res.set_header("X-Info", image.info.dump(-1, ' ', true));
+        res.set_header("X-Load-Ms", std::to_string(loadMs));
+        res.set_header("X-Render-Ms", std::to_string(renderMs));
+        if (const auto it = req.params.find("seq"); it != req.params.end()) res.set_header("X-Seq", it->second);
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(std::move(body), "application/octet-stream");
+      });
     });
   });
   server.Get("/api/history", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
       const ExploreRequest r = parsed(req, {"D", "x", "y"});
-      std::lock_guard lock(explorer.renderLock());
-      const std::shared_ptr<const Scene> scene = explorer.scene(r.overrides);
-      checkPixel(r, *scene);
-      res.set_content(pixelHistory(*scene, r.x, r.y).dump(), "application/json");
+      explorer.onRenderThread([&] {
+        const std::shared_ptr<const Scene> scene = explorer.scene(r.overrides);
+        checkPixel(r, *scene);
+        res.set_content(pixelHistory(*scene, r.x, r.y).dump(), "application/json");
+      });
     });
   });
   server.Get("/api/stats", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
       const ExploreRequest r = parsed(req, {"D"});
-      std::lock_guard lock(explorer.renderLock());
-      res.set_content(frameStatistics(*explorer.scene(r.overrides), explorer.pipelines()).dump(), "application/json");
+      explorer.onRenderThread([&] {
+        res.set_content(frameStatistics(*explorer.scene(r.overrides), explorer.pipelines()).dump(), "application/json");
+      });
     });
   });
   // The scene file with the state written in: checked by loading the state first.
   server.Get("/api/save", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
       const ExploreRequest r = parsed(req, {"D"});
-      std::lock_guard lock(explorer.renderLock());
-      const std::shared_ptr<const Scene> scene = explorer.scene(r.overrides);
-      std::vector<std::string> names;
-      for (const Light& l : scene->lights) names.push_back(l.name);
-      std::vector<std::string> all = explorer.baseOverrides();
-      all.insert(all.end(), r.overrides.begin(), r.overrides.end());
-      res.set_content(sceneWithOverrides(explorer.sourceText(), all, names, explorer.sourceName()),
-                      "text/yaml; charset=utf-8");
-      res.set_header("Content-Disposition", "attachment; filename=\"explore-state.yaml\"");
+      explorer.onRenderThread([&] {
+        const std::shared_ptr<const Scene> scene = explorer.scene(r.overrides);
+        std::vector<std::string> names;
+        for (const Light& l : scene->lights) names.push_back(l.name);
+        std::vector<std::string> all = explorer.baseOverrides();
+        all.insert(all.end(), r.overrides.begin(), r.overrides.end());
+        res.set_content(sceneWithOverrides(explorer.sourceText(), all, names, explorer.sourceName()),
+                        "text/yaml; charset=utf-8");
+        res.set_header("Content-Disposition", "attachment; filename=\"explore-state.yaml\"");
+      });
     });
   });
   server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
@@ -330,6 +381,7 @@ class SignalStop {
 
 int runExploreServer(const ExploreOptions& options) {
   SignalStop stop;  // before any thread starts, so every thread inherits the mask
+  keepFreedMemoryForReuse();  // frame after frame: freed buffers are reused, not faulted in anew
   Explorer explorer(options);
   httplib::Server server;
   server.set_keep_alive_max_count(1000000);

@@ -1,7 +1,9 @@
 // The explorer's frame rate as a user sees it: the real page in headless Chromium, the camera
 // orbited by mouse moves at 60 per second for a while, then the figures the page counted
 // (window.exploreStats): frames shown per second, the server's time per frame (loading the state
-// and rendering it) and the latency from an input to the first frame showing it.
+// and rendering it) and the latency from an input to the first frame showing it; and the CPU time
+// per frame shown of the server and of the browser, which, unlike the wall-clock figures, do not
+// grow with whatever else the machine runs (2000 / their sum bounds the frame rate on two idle cores).
 //   node tests/browser/explore_bench.mjs SHADOWREF_BINARY [SECONDS] [SCENE...]
 // A benchmark, not a test: scripts/bench-explore.sh runs it.
 import { launchBrowser, settle, startExplorer, stopExplorer, waitForFrames, imageBox } from './explore_harness.mjs';
@@ -19,8 +21,35 @@ const quantile = (values, q) => {
 };
 const f1 = (v) => v.toFixed(1);
 
+// CPU time (user + system, ms) of a process and all its descendants, from /proc: the work a frame
+// costs whatever else the machine runs, where wall-clock times grow with its load.
+import fs from 'node:fs';
+const ticksPerMs = 100 / 1000;  // USER_HZ is 100 on Linux
+function cpuMs(rootPid) {
+  const children = new Map();
+  const times = new Map();
+  for (const entry of fs.readdirSync('/proc')) {
+    if (!/^\d+$/.test(entry)) continue;
+    let stat;
+    try { stat = fs.readFileSync(`/proc/${entry}/stat`, 'utf8'); } catch { continue; }
+    const fields = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
+    const pid = Number(entry), ppid = Number(fields[1]);
+    times.set(pid, Number(fields[11]) + Number(fields[12]));
+    if (!children.has(ppid)) children.set(ppid, []);
+    children.get(ppid).push(pid);
+  }
+  let total = 0;
+  const stack = [rootPid];
+  while (stack.length) {
+    const pid = stack.pop();
+    total += times.get(pid) || 0;
+    stack.push(...(children.get(pid) || []));
+  }
+  return total / ticksPerMs;
+}
+
 const browser = await launchBrowser();
-console.log('scene                     fps    server ms (median, p90)   latency ms (median, p90)   frames  inputs');
+console.log('scene                     fps    server ms (median, p90)   latency ms (median, p90)   frames  inputs   CPU ms/frame: server, browser above idle (idle ms/s)');
 let status = 0;
 for (const scene of scenes.length ? scenes : ['scenes/pumpkins.yaml', 'scenes/room.yaml']) {
   const server = await startExplorer(binary, [scene]);
@@ -43,6 +72,11 @@ for (const scene of scenes.length ? scenes : ['scenes/pumpkins.yaml', 'scenes/ro
       const s = window.exploreStats;
       s.framesShown = 0; s.serverMs.length = 0; s.latencyMs.length = 0;
     });
+    // The browser's own rate while nothing happens (headless Chromium ticks even on about:blank).
+    const idle0 = cpuMs(browser.process().pid);
+    await new Promise((r) => setTimeout(r, 2000));
+    const idlePerS = (cpuMs(browser.process().pid) - idle0) / 2;
+    const serverCpu0 = cpuMs(server.process.pid), browserCpu0 = cpuMs(browser.process().pid);
     const start = Date.now();
     let inputs = 0;
     // A slow circle: 60 mouse moves a second, each one a new camera.
@@ -56,11 +90,14 @@ for (const scene of scenes.length ? scenes : ['scenes/pumpkins.yaml', 'scenes/ro
     }
     const stats = await page.evaluate(() => window.exploreStats);
     const elapsed = (Date.now() - start) / 1000;
+    const serverCpu = (cpuMs(server.process.pid) - serverCpu0) / stats.framesShown;
+    const browserCpu = (cpuMs(browser.process().pid) - browserCpu0 - idlePerS * elapsed) / stats.framesShown;
     await page.mouse.up();
     const fps = stats.framesShown / elapsed;
     console.log(`${scene.padEnd(24)} ${f1(fps).padStart(5)}    ${f1(quantile(stats.serverMs, 0.5)).padStart(6)}, ${f1(quantile(stats.serverMs, 0.9)).padStart(6)}` +
       `           ${f1(quantile(stats.latencyMs, 0.5)).padStart(6)}, ${f1(quantile(stats.latencyMs, 0.9)).padStart(6)}` +
-      `              ${String(stats.framesShown).padStart(5)}  ${String(inputs).padStart(6)}`);
+      `              ${String(stats.framesShown).padStart(5)}  ${String(inputs).padStart(6)}` +
+      `   ${f1(serverCpu).padStart(6)}, ${f1(browserCpu).padStart(6)} (${f1(idlePerS)})`);
     if (stats.errors) { console.error(scene + ': ' + stats.errors + ' failed frame requests'); status = 1; }
     await page.close();
   } finally {
