@@ -281,3 +281,37 @@ TEST_CASE("explore --export writes the page and its views into a new folder, or 
   for (const auto& e : fs::directory_iterator(dir)) entries += e.path().filename().string().starts_with("nothing");
   CHECK(entries == 0);
 }
+
+TEST_CASE("explore saves a state as a scene file that renders as the state does", "[cli][explore]") {
+  const fs::path dir = testScratch() / "explore-save";
+  fs::create_directories(dir);
+  // A file with its own lights list and a generator with a generated light: moved, switched off,
+  // the method and camera changed.
+  for (const auto& [scene, overrides] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"scenes/two_lights.yaml",
+            {"camera.eye=[1.5,4,7]", "lights.cool=off", "lights.warm.position=[-1,4,2]", "shadow.method=zfail"}},
+           {"scenes/pumpkins.yaml",
+            {"camera.eye=[0.1098,1.3724,3.6614]", "lights.candle.position=[0.45,0.3,1.0]", "shadow.method=zpass",
+             "shadow.wrap=false"}}}) {
+    CAPTURE(scene, overrides);
+    Server server({scene, "-D", "image.width=160", "-D", "image.height=128"});
+    httplib::Client client("127.0.0.1", server.port());
+    client.set_read_timeout(60);
+    const httplib::Result r = client.Get("/api/save?" + query(overrides));
+    REQUIRE(r);
+    REQUIRE(r->status == 200);
+    // Neither scene reads a mesh file, so the saved file may live anywhere.
+    const fs::path saved = dir / "saved.yaml";
+    std::ofstream(saved) << r->body;
+    std::vector<std::string> all{"image.width=160", "image.height=128"};
+    all.insert(all.end(), overrides.begin(), overrides.end());
+    const shadowref::testing::CliRun a = runShadowref(renderArgs(saved.string(), {}, dir / "saved.png"));
+    INFO(r->body);
+    INFO(a.err);
+    REQUIRE(a.status == 0);
+    REQUIRE(runShadowref(renderArgs(scene, all, dir / "state.png")).status == 0);
+    int w = 0, h = 0;
+    CHECK(pngRgb(dir / "saved.png", w, h) == pngRgb(dir / "state.png", w, h));
+    CHECK(server.stop(SIGINT) == 0);
+  }
+}
