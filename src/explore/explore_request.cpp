@@ -55,6 +55,10 @@ std::optional<std::string> parseRequest(const QueryParams& params, const std::ve
     if (!parseInt(it->second, 0, 1 << 20, v))
       return std::string(axis) + ": expected a whole number from 0, got '" + it->second.substr(0, 64) + "'";
   }
+  if (const auto it = params.find("encoding"); it != params.end()) {
+    if (it->second != "raw" && it->second != "png") return "encoding: expected raw or png, got '" + it->second.substr(0, 64) + "'";
+    request.png = it->second == "png";
+  }
   if (const auto it = params.find("seq"); it != params.end()) {
     int seq = 0;
     if (!parseInt(it->second, 0, 2147483647, seq)) return "seq: expected a whole number from 0";

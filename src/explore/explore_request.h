@@ -22,9 +22,10 @@ struct ExploreRequest {
   std::vector<std::string> overrides;  // the D values, in order
   ViewRequest view;
   int x = -1, y = -1;                  // a pixel (history), framebuffer coordinates
+  bool png = false;                    // encoding=png: a picture without values as PNG
 };
 
-// Checks the parameters `allowed` names (any of: D, view, index, signed, x, y, seq) and fills the
+// Checks the parameters `allowed` names (any of: D, view, index, signed, x, y, seq, encoding) and fills the
 // request; the reason on failure. x and y are checked against the image later, once the scene is
 // loaded.
 std::optional<std::string> parseRequest(const QueryParams& params, const std::vector<std::string>& allowed,

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "explore/explore_request.h"
+#include "explore/png_stream.h"
 #include "explore/scene_save.h"
 #include "explore/views_adapter.h"
 #include "image/image_writer.h"
@@ -270,7 +271,7 @@ void addRoutes(httplib::Server& server, Explorer& explorer) {
   // cost nothing to encode, and a local connection carries them faster than any encoder runs.
   server.Get("/api/frame", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
-      const ExploreRequest r = parsed(req, {"D", "view", "index", "signed", "seq"});
+      const ExploreRequest r = parsed(req, {"D", "view", "index", "signed", "seq", "encoding"});
       const uint64_t ticket = ++explorer.latestFrame;
       explorer.onRenderThread([&] {
         if (ticket != explorer.latestFrame.load()) {  // a newer state came in while this one waited
@@ -283,9 +284,15 @@ void addRoutes(httplib::Server& server, Explorer& explorer) {
         const double loadMs = msSince(start);
         ViewImage image = renderView(*scene, r.view, explorer.pipelines());
         const double renderMs = msSince(start) - loadMs;
-        std::string body(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size());
+        // encoding=png: a picture without per-pixel values travels as PNG (lossless, a fraction of
+        // the bytes; see png_stream.h); otherwise, and always with values, as raw RGBA + floats.
+        const bool png = r.png && image.values.empty();
+        std::string body = png ? encodePngRgb(image.rgba, image.width, image.height)
+                               : std::string(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size());
         if (!image.values.empty())
           body.append(reinterpret_cast<const char*>(image.values.data()), image.values.size() * sizeof(float));
+        const double encodeMs = msSince(start) - loadMs - renderMs;
+        res.set_header("X-Encode-Ms", std::to_string(encodeMs));
         res.set_header("X-Width", std::to_string(image.width));
         res.set_header("X-Height", std::to_string(image.height));
         res.set_header("X-Values", image.values.empty() ? "" : image.valueName);
@@ -294,7 +301,7 @@ void addRoutes(httplib::Server& server, Explorer& explorer) {
         res.set_header("X-Render-Ms", std::to_string(renderMs));
         if (const auto it = req.params.find("seq"); it != req.params.end()) res.set_header("X-Seq", it->second);
         res.set_header("Cache-Control", "no-store");
-        res.set_content(std::move(body), "application/octet-stream");
+        res.set_content(std::move(body), png ? "image/png" : "application/octet-stream");
       });
     });
   });

@@ -83,7 +83,9 @@ async function pump() {
   dirty = false;
   inFlight += 1;
   const asked = version;
-  const params = { view: state.view, seq: asked };
+  // PNG for pictures without per-pixel values: a fraction of the bytes, decoded off the page's
+  // thread; the server sends raw pixels and values for the views that have values.
+  const params = { view: state.view, seq: asked, encoding: 'png' };
   if (['stencil', 'shadowmap', 'visibility', 'pass'].includes(state.view)) params.index = state.index;
   if (state.signed) params.signed = 1;
   try {
@@ -94,10 +96,13 @@ async function pump() {
       exploreStats.errors += 1;
       showError(await response.text());
     } else {
-      const buffer = await response.arrayBuffer();
+      const png = (response.headers.get('Content-Type') || '').startsWith('image/png');
+      // Decoded as stored: no colour conversion, so the canvas holds the rendered bytes.
+      const picture = png ? await createImageBitmap(await response.blob(), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' })
+        : await response.arrayBuffer();
       if (asked > shownVersion) {
         showError('');
-        drawFrame(response.headers, buffer);
+        drawFrame(response.headers, picture);
         exploreStats.framesShown += 1;
         exploreStats.serverMs.push(Number(response.headers.get('X-Load-Ms')) + Number(response.headers.get('X-Render-Ms')));
         const t = inputTimes.get(asked);
@@ -117,18 +122,25 @@ async function pump() {
   if (dirty && inFlight < kMaxInFlight) pump();
 }
 
-function drawFrame(headers, buffer) {
+// `picture`: an ImageBitmap (PNG) or an ArrayBuffer of RGBA pixels, then the values if any.
+function drawFrame(headers, picture) {
   const width = Number(headers.get('X-Width')), height = Number(headers.get('X-Height'));
   const info = JSON.parse(headers.get('X-Info') || '{}');
   const valueName = headers.get('X-Values') || '';
-  const pixels = new Uint8ClampedArray(buffer, 0, width * height * 4);
-  const values = valueName ? new Float32Array(buffer, width * height * 4, width * height) : null;
+  const raw = picture instanceof ArrayBuffer;
+  const values = raw && valueName ? new Float32Array(picture, width * height * 4, width * height) : null;
   const canvas = $('image');
   if (canvas.width !== width || canvas.height !== height) {
     canvas.width = $('marks').width = width;
     canvas.height = $('marks').height = height;
   }
-  canvas.getContext('2d').putImageData(new ImageData(pixels, width, height), 0, 0);
+  const context = canvas.getContext('2d');
+  if (raw) {
+    context.putImageData(new ImageData(new Uint8ClampedArray(picture, 0, width * height * 4), width, height), 0, 0);
+  } else {
+    context.drawImage(picture, 0, 0);
+    picture.close();
+  }
   lastImage = { width, height, values, valueName, info };
   showKey(info);
   updateIndexChoices(info);
