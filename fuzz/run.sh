@@ -58,7 +58,7 @@ libs_of() {
     render_values) echo shadow scene pipeline ;;
     image_compare) echo image pipeline ;;
     differential) echo pipeline ;;
-    cli) echo cli oracle shadow scene image pipeline ;;
+    cli) echo cli explore oracle shadow scene image pipeline ;;
     *) echo "fuzz/run.sh: unknown target '$1' (targets: ${all_targets[*]})" >&2; return 1 ;;
   esac
 }
@@ -80,9 +80,16 @@ sources_of() {
   case $1 in
     pipeline) echo src/gl/*.cpp src/exec/*.cpp src/memory/*.cpp ;;
     image) echo src/image/*.cpp src/image/oiio/*.cpp ;;
+    explore) echo src/explore/*.cpp "$out/gen/explore_page.cpp" ;;
     *) echo src/"$1"/*.cpp ;;
   esac
 }
+# The explorer's page, compiled in as the CMake build does it (written only when it changes).
+if [ -n "${needed[explore]:-}" ]; then
+  mkdir -p "$out/gen"
+  pages=(src/explore/page/*)
+  cmake "-DFILES=$(IFS=';'; echo "${pages[*]}")" -DOUTPUT="$out/gen/explore_page.cpp" -P cmake/embed_files.cmake
+fi
 for l in "${!needed[@]}"; do
   for src in $(sources_of "$l"); do
     [ "$src" = src/cli/main.cpp ] && continue
@@ -112,6 +119,7 @@ for t in "${targets[@]}"; do
   for l in $(libs_of "$t"); do libs+=("$out/lib/lib$l.a"); done
   extra=(-lyaml-cpp)
   case $t in image_compare | cli) extra+=($(pkg-config --libs OpenImageIO libpng OpenEXR nettle)) ;; esac
+  [ "$t" = cli ] && extra+=($(pkg-config --libs cpp-httplib))
   "$CXX" -fsanitize=fuzzer,$sanitizers "$out/obj/fuzz_${t}_fuzz.o" "${libs[@]}" "${extra[@]}" -lpthread -o "$out/${t}_fuzz"
 done
 

@@ -4,11 +4,12 @@
 #   scripts/setup.sh [--role render|test|bench] [BUILD_DIR] [extra cmake args...]
 # Roles, each including the one before:
 #   render  the compiler, CMake and the libraries the CLI links (glm, yaml-cpp, tinygltf, CLI11,
-#           libpng, OpenEXR, nettle), and pybind11 and NumPy for the Python module; builds the CLI
-#           and the module (scripts/render-default.sh)
+#           libpng, OpenEXR, nettle, cpp-httplib), and pybind11 and NumPy for the Python module;
+#           builds the CLI and the module (scripts/render-default.sh)
 #   test    + OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
 #           OSMesa (the conformance tests), clang and its runtimes (fuzzing), pytest, nbclient,
-#           ipykernel and matplotlib (the Python tests and the notebook); builds everything
+#           ipykernel and matplotlib (the Python tests and the notebook), Chromium and
+#           tests/browser's npm packages (the explorer's browser test); builds everything
 #           (scripts/test.sh)
 # Where the Python module was built, the python3 on the PATH is pointed at it (a .pth file in its
 # site folder naming BUILD_DIR/python), so that `python3 -c "import shadowref"` works from then on
@@ -26,10 +27,10 @@ fi
 render_packages=(
   build-essential cmake ninja-build pkg-config ccache
   libglm-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  libpng-dev libopenexr-dev nettle-dev
+  libpng-dev libopenexr-dev nettle-dev libcpp-httplib-dev
   python3-dev pybind11-dev python3-numpy
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev
+test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev chromium
                python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in
@@ -47,6 +48,20 @@ if ((${#missing[@]})); then
   SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# The browser test's driver (tests/browser/: puppeteer-core, pinned by its package-lock.json) for
+# the Chromium above; npm ci again only when the lock file is newer than what it installed.
+if [ "$role" != render ]; then
+  lock=tests/browser/package-lock.json
+  if ! command -v npm >/dev/null; then
+    echo "setup: installing npm" >&2
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+  fi
+  if [ ! -f tests/browser/node_modules/.package-lock.json ] || [ $lock -nt tests/browser/node_modules/.package-lock.json ]; then
+    (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
+  fi
 fi
 
 build_dir=${1:-build}

@@ -8,6 +8,7 @@
 #include "cli/bench_command.h"
 #include "cli/cli_common.h"
 #include "cli/compare_command.h"
+#include "cli/explore_command.h"
 #include "cli/render_command.h"
 
 namespace CLI {
@@ -21,6 +22,7 @@ struct CommandArgs {
   SceneArgs check, info;
   CompareArgs compare;
   BenchArgs bench;
+  explore::ExploreOptions explore;
 };
 
 // Adds every subcommand to `app`, its options writing into `args` (which must outlive `app`).

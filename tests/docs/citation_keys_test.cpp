@@ -28,12 +28,13 @@ std::string readFile(const fs::path& p) {
 }
 
 // The text files of src/, support/, tests/, bench/ and the scenes users start from (not
-// bench/results/: recorded runs, kept as printed).
+// bench/results/: recorded runs, kept as printed; not node_modules/: installed npm packages).
 std::vector<fs::path> sourceFiles() {
   std::vector<fs::path> out;
   for (const char* dir : {"src", "support", "tests", "bench", "scenes"}) {
     for (auto it = fs::recursive_directory_iterator(kRoot / dir); it != fs::recursive_directory_iterator(); ++it) {
-      if (it->is_directory() && it->path() == kRoot / "bench" / "results") {
+      // tests/browser/node_modules: npm's copy of others' packages (npm ci), not this project's text.
+      if (it->is_directory() && (it->path() == kRoot / "bench" / "results" || it->path().filename() == "node_modules")) {
         it.disable_recursion_pending();
         continue;
       }

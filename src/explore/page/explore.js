@@ -1,0 +1,580 @@
+// The explorer's page. Every state is a list of `-D key=value` overrides, exactly as
+// `shadowref render` takes them: the server renders the state, and the same -D values on the
+// command line give the same picture. At most two frame requests are in flight (the server renders
+// one while the other's pixels travel); input that arrives meanwhile only marks the state as
+// changed, so the newest state is rendered next, no stale frame queues up, and a frame older than
+// the one shown is dropped.
+'use strict';
+
+const $ = (id) => document.getElementById(id);
+const exported = window.SHADOWREF_EXPORT || null;
+
+// Figures for the benchmark and the browser test (bench/explore/bench.mjs, tests/browser/).
+const exploreStats = { framesShown: 0, serverMs: [], latencyMs: [], errors: 0, superseded: 0 };
+window.exploreStats = exploreStats;
+
+let scene = null;      // the scene's values as the server summarised them (/api/scene)
+let initial = null;    // the state the page started in: a setting is sent only when it differs
+const state = {
+  eye: [0, 0, 5], target: [0, 0, 0],
+  method: 'none', twoSided: true, wrap: true, darken: false, mapSize: 1024, pcf: 1,
+  lights: [],          // {name, type, on, position, soft}
+  light: 0,            // the light the sliders move
+  view: 'frame', index: 0, signed: false,
+};
+let cameraMoved = false;
+let lastImage = null;   // {width, height, values, valueName, info}
+
+// ---- numbers as the command line gets them: at most 4 decimals, no trailing zeros
+const num = (v) => String(Number(Number(v).toFixed(4)));
+const vec = (v) => '[' + v.map(num).join(',') + ']';
+
+function overrides() {
+  const d = [];
+  if (cameraMoved) {
+    d.push('camera.eye=' + vec(state.eye));
+    d.push('camera.target=' + vec(state.target));
+  }
+  if (state.method !== initial.method) d.push('shadow.method=' + state.method);
+  if (state.twoSided !== initial.twoSided) d.push('shadow.two_sided=' + state.twoSided);
+  if (state.wrap !== initial.wrap) d.push('shadow.wrap=' + state.wrap);
+  if (state.darken !== initial.darken) d.push('shadow.darken_composite=' + state.darken);
+  if (state.mapSize !== initial.mapSize) d.push('shadow.map_size=' + state.mapSize);
+  if (state.pcf !== initial.pcf) d.push('shadow.pcf=' + state.pcf);
+  state.lights.forEach((l, i) => {
+    const first = initial.lights[i];
+    if (!l.on) { d.push('lights.' + l.name + '=off'); return; }
+    if (vec(l.position) !== vec(first.position)) d.push('lights.' + l.name + '.position=' + vec(l.position));
+    if (l.soft !== first.soft) d.push('lights.' + l.name + '.soft.shape=' + l.soft);
+  });
+  return d;
+}
+
+function query(extra) {
+  const parts = overrides().map((o) => 'D=' + encodeURIComponent(o));
+  for (const [k, v] of Object.entries(extra || {})) parts.push(k + '=' + encodeURIComponent(v));
+  return parts.join('&');
+}
+
+function showError(text) {
+  const box = $('error');
+  box.hidden = !text;
+  box.textContent = text || '';
+}
+
+// ---- frames: at most two in flight (one rendering while the other travels), the newest state next
+const kMaxInFlight = 2;
+let inFlight = 0, dirty = false, version = 0, shownVersion = 0;
+const inputTimes = new Map();  // state version -> time of the input that made it
+// For the tests: whether the picture shows the newest state, and the state's -D values.
+window.exploreIdle = () => inFlight === 0 && !dirty;
+window.exploreOverrides = () => overrides();
+
+function changed() {
+  version += 1;
+  inputTimes.set(version, performance.now());
+  dirty = true;
+  $('state').textContent = overrides().map((o) => '-D ' + o).join(' ') || '(the scene as written)';
+  if (inFlight < kMaxInFlight) pump();
+}
+
+async function pump() {
+  if (!dirty) return;
+  dirty = false;
+  inFlight += 1;
+  const asked = version;
+  // PNG for pictures without per-pixel values: a fraction of the bytes, decoded off the page's
+  // thread; the server sends raw pixels and values for the views that have values.
+  const params = { view: state.view, seq: asked, encoding: 'png' };
+  if (['stencil', 'shadowmap', 'visibility', 'pass'].includes(state.view)) params.index = state.index;
+  if (state.signed) params.signed = 1;
+  try {
+    const response = await fetch('api/frame?' + query(params), { cache: 'no-store' });
+    if (response.status === 204 || asked < shownVersion) {
+      exploreStats.superseded += 1;  // a newer state was asked for, or is shown already
+    } else if (!response.ok) {
+      exploreStats.errors += 1;
+      showError(await response.text());
+    } else {
+      const png = (response.headers.get('Content-Type') || '').startsWith('image/png');
+      // Decoded as stored: no colour conversion, so the canvas holds the rendered bytes.
+      const picture = png ? await createImageBitmap(await response.blob(), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' })
+        : await response.arrayBuffer();
+      if (asked > shownVersion) {
+        showError('');
+        drawFrame(response.headers, picture);
+        exploreStats.framesShown += 1;
+        exploreStats.serverMs.push(Number(response.headers.get('X-Load-Ms')) + Number(response.headers.get('X-Render-Ms')));
+        const t = inputTimes.get(asked);
+        if (t !== undefined) exploreStats.latencyMs.push(performance.now() - t);
+        for (const k of inputTimes.keys()) if (k <= asked) inputTimes.delete(k);
+        shownVersion = asked;
+        $('status').textContent = 'server ' + num(exploreStats.serverMs[exploreStats.serverMs.length - 1]) + ' ms';
+      } else {
+        exploreStats.superseded += 1;
+      }
+    }
+  } catch (e) {
+    exploreStats.errors += 1;
+    showError('the server does not answer: ' + e);
+  }
+  inFlight -= 1;
+  if (dirty && inFlight < kMaxInFlight) pump();
+}
+
+// `picture`: an ImageBitmap (PNG) or an ArrayBuffer of RGBA pixels, then the values if any.
+function drawFrame(headers, picture) {
+  const width = Number(headers.get('X-Width')), height = Number(headers.get('X-Height'));
+  const info = JSON.parse(headers.get('X-Info') || '{}');
+  const valueName = headers.get('X-Values') || '';
+  const raw = picture instanceof ArrayBuffer;
+  const values = raw && valueName ? new Float32Array(picture, width * height * 4, width * height) : null;
+  const canvas = $('image');
+  if (canvas.width !== width || canvas.height !== height) {
+    canvas.width = $('marks').width = width;
+    canvas.height = $('marks').height = height;
+  }
+  const context = canvas.getContext('2d');
+  if (raw) {
+    context.putImageData(new ImageData(new Uint8ClampedArray(picture, 0, width * height * 4), width, height), 0, 0);
+  } else {
+    context.drawImage(picture, 0, 0);
+    picture.close();
+  }
+  lastImage = { width, height, values, valueName, info };
+  showKey(info);
+  updateIndexChoices(info);
+}
+
+// ---- the key of a view: the stencil legend (only the counts present) or the range's colour bar
+function showKey(info) {
+  const legend = $('legend');
+  legend.textContent = '';
+  for (const entry of info.legend || []) {
+    const item = document.createElement('span');
+    const swatch = document.createElement('i');
+    swatch.style.background = 'rgb(' + entry.rgb.join(',') + ')';
+    item.append(swatch, String(entry.count));
+    legend.append(item);
+  }
+  const bar = $('colourbar');
+  bar.hidden = !info.range;
+  if (info.range) {
+    const c = $('bar').getContext('2d');
+    for (let i = 0; i < 256; i++) { c.fillStyle = 'rgb(' + i + ',' + i + ',' + i + ')'; c.fillRect(i, 0, 1, 12); }
+    $('bar-lo').textContent = Number(info.range[0]).toPrecision(5);
+    $('bar-hi').textContent = Number(info.range[1]).toPrecision(5);
+  }
+  $('strip').hidden = state.view !== 'pass';
+  if (info.passes) {
+    $('pass').max = String(info.passes.length - 1);
+    $('pass-name').textContent = state.view === 'pass' ? (info.pass || '') : '';
+  }
+}
+
+function updateIndexChoices(info) {
+  const select = $('index');
+  let names = [];
+  if (state.view === 'stencil') names = (info.passes || []).filter((p) => p.includes('-stencil-')).map((p) => p.split('-stencil-')[1]);
+  else if (state.view === 'shadowmap') names = info.shadowMaps || [];
+  else if (state.view === 'visibility') names = info.lights || [];
+  $('index-label').hidden = names.length === 0;
+  const text = names.join('\n');
+  if (select.dataset.names === text) return;
+  select.dataset.names = text;
+  select.textContent = '';
+  names.forEach((n, i) => select.append(new Option(n, String(i))));
+  select.value = String(Math.min(state.index, Math.max(0, names.length - 1)));
+}
+
+// ---- the value under the mouse and the pixel it is
+function pixelAt(event) {
+  const canvas = $('image');
+  const rect = canvas.getBoundingClientRect();
+  const col = Math.floor((event.clientX - rect.left) * canvas.width / rect.width);
+  const row = Math.floor((event.clientY - rect.top) * canvas.height / rect.height);
+  if (col < 0 || row < 0 || col >= canvas.width || row >= canvas.height) return null;
+  return { col, row, x: col, y: canvas.height - 1 - row };  // y: framebuffer row, 0 at the bottom
+}
+
+function probe(event) {
+  const p = pixelAt(event);
+  if (!p || !lastImage) return;
+  let text = 'pixel ' + p.x + ',' + p.y + ' (row 0 is the bottom)';
+  if (lastImage.values) {
+    const v = lastImage.values[p.row * lastImage.width + p.col];
+    text += '  ' + lastImage.valueName + ' ' + (Number.isFinite(v) ? Number(v.toPrecision(6)) : 'nothing drawn');
+  }
+  $('probe').textContent = text;
+}
+
+// ---- camera: orbit about the target, pan, zoom, walk
+const sub = (a, b) => a.map((v, i) => v - b[i]);
+const add = (a, b) => a.map((v, i) => v + b[i]);
+const scale = (a, s) => a.map((v) => v * s);
+const length = (a) => Math.hypot(...a);
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const normal = (a) => scale(a, 1 / (length(a) || 1));
+
+function orbit(dx, dy) {
+  const offset = sub(state.eye, state.target);
+  const r = length(offset);
+  let yaw = Math.atan2(offset[0], offset[2]);
+  let pitch = Math.asin(Math.max(-1, Math.min(1, offset[1] / r)));
+  yaw -= dx * 0.01;
+  pitch = Math.max(-1.5, Math.min(1.5, pitch + dy * 0.01));
+  state.eye = add(state.target, [r * Math.cos(pitch) * Math.sin(yaw), r * Math.sin(pitch), r * Math.cos(pitch) * Math.cos(yaw)]);
+  cameraMoved = true;
+  changed();
+}
+
+function pan(dx, dy) {
+  const forward = normal(sub(state.target, state.eye));
+  const right = normal(cross(forward, [0, 1, 0]));
+  const up = cross(right, forward);
+  const r = length(sub(state.eye, state.target));
+  const move = add(scale(right, -dx * r * 0.002), scale(up, dy * r * 0.002));
+  state.eye = add(state.eye, move);
+  state.target = add(state.target, move);
+  cameraMoved = true;
+  changed();
+}
+
+function zoom(factor) {
+  const offset = sub(state.eye, state.target);
+  if (length(offset) * factor < 0.01) return;
+  state.eye = add(state.target, scale(offset, factor));
+  cameraMoved = true;
+  changed();
+}
+
+function walk(step) {
+  const forward = normal(sub(state.target, state.eye));
+  const move = scale(forward, step * Math.max(0.05, length(sub(state.eye, state.target)) * 0.05));
+  state.eye = add(state.eye, move);
+  state.target = add(state.target, move);
+  cameraMoved = true;
+  changed();
+}
+
+// ---- pixel history: every fragment, and why the pixel is what it is
+async function history(p) {
+  $('history').textContent = 'rendering the history of pixel ' + p.x + ',' + p.y + ' ...';
+  const response = await fetch('api/history?' + query({ x: p.x, y: p.y }));
+  if (!response.ok) { $('history').textContent = await response.text(); return; }
+  showHistory(await response.json());
+}
+
+function verdict(h) {
+  const lines = [];
+  const lights = new Set(h.fragments.map((f) => f.light).filter((l) => l));
+  for (const light of lights) {
+    const lit = h.fragments.filter((f) => f.light === light && f.pass.includes('lit'));
+    const stencilPass = h.fragments.filter((f) => f.light === light && f.pass.includes('stencil'));
+    const last = stencilPass.length ? stencilPass[stencilPass.length - 1].stencilAfter : 0;
+    if (lit.some((f) => f.stencilTest && f.depthTest)) lines.push('lit by ' + light + ': its lit pass reached the pixel');
+    else if (lit.some((f) => !f.stencilTest))
+      lines.push('in the shadow of ' + light + ': the stencil held ' + last + ' (not 0) when its lit pass was drawn, so the stencil test failed');
+    else if (stencilPass.length) lines.push(light + ': ' + stencilPass.length + ' volume fragments left the stencil at ' + last);
+  }
+  for (const [name, v] of Object.entries(h.visibility || {})) lines.push('visibility of ' + name + ': ' + v);
+  return lines;
+}
+
+function showHistory(h) {
+  const box = $('history');
+  box.textContent = '';
+  const title = document.createElement('h2');
+  title.textContent = 'pixel ' + h.x + ',' + h.y + ': ' + h.fragments.length + ' fragments, final colour (' + h.colour.join(', ') + ')';
+  box.append(title);
+  for (const line of verdict(h)) {
+    const p = document.createElement('p');
+    p.className = 'why';
+    p.textContent = line;
+    box.append(p);
+  }
+  const table = document.createElement('table');
+  const head = ['#', 'pass', 'light', 'draw', 'facing', 'z', 'stored z', 'stencil test', 'depth test', 'stencil', 'colour'];
+  table.append(row(head, 'th'));
+  h.fragments.forEach((f, i) => {
+    const r = row([i, f.pass, f.light || '-', f.what, f.facing, f.depth.toPrecision(7), f.storedDepth.toPrecision(7),
+      f.stencilTest ? 'pass' : 'FAIL', f.depthTest === null ? '-' : f.depthTest ? 'pass' : 'FAIL',
+      f.stencilBefore + ' → ' + f.stencilAfter, f.colour ? f.colour.map((c) => c.toFixed(3)).join(' ') : ''], 'td');
+    r.children[7].className = f.stencilTest ? 'pass' : 'fail';
+    r.children[8].className = f.depthTest ? 'pass' : 'fail';
+    table.append(r);
+  });
+  box.append(table);
+}
+
+function row(cells, tag) {
+  const tr = document.createElement('tr');
+  for (const c of cells) {
+    const td = document.createElement(tag);
+    td.textContent = String(c);
+    tr.append(td);
+  }
+  return tr;
+}
+
+// ---- controls
+function fillSelect(select, values, labels) {
+  select.textContent = '';
+  values.forEach((v, i) => select.append(new Option(labels ? labels[i] : String(v), String(v))));
+}
+
+function stencilMethod() {
+  const m = scene.methods.find((x) => x.name === state.method);
+  return m && m.stencil;
+}
+
+function fillViews() {
+  const views = [['frame', 'frame']];
+  if (stencilMethod()) views.push(['stencil', 'stencil counts'], ['volumes', 'volumes'], ['overlay', 'translucent volumes']);
+  views.push(['depth', 'depth']);
+  if (state.method === 'shadowmap' || state.method === 'tsm') views.push(['shadowmap', 'shadow map']);
+  views.push(['visibility', 'visibility'], ['pass', 'passes']);
+  fillSelect($('view'), views.map((v) => v[0]), views.map((v) => v[1]));
+  if (!views.some((v) => v[0] === state.view)) state.view = 'frame';
+  $('view').value = state.view;
+  $('signed-label').hidden = !['stencil', 'pass'].includes(state.view);
+}
+
+function setMethod(name) {
+  state.method = name;
+  $('method').value = name;
+  fillViews();
+  changed();
+}
+
+function setView(name) {
+  state.view = name;
+  state.index = 0;
+  fillViews();
+  changed();
+}
+
+function selectLight(i) {
+  state.light = i;
+  $('light').value = String(i);
+  const l = state.lights[i];
+  const b = scene.bounds;
+  ['lx', 'ly', 'lz'].forEach((id, k) => {
+    const input = $(id);
+    input.min = String(Math.min(b.min[k], l.position[k]));
+    input.max = String(Math.max(b.max[k], l.position[k]));
+    input.value = String(l.position[k]);
+    input.disabled = l.type === 'directional';
+  });
+  $('soft').value = l.soft;
+}
+
+function fillLights() {
+  const box = $('lights');
+  box.textContent = '';
+  state.lights.forEach((l, i) => {
+    const label = document.createElement('label');
+    const box2 = document.createElement('input');
+    box2.type = 'checkbox';
+    box2.checked = l.on;
+    box2.addEventListener('change', () => { l.on = box2.checked; changed(); });
+    label.append(box2, ' ' + l.name + ' (' + l.type + ')');
+    box.append(label);
+  });
+  fillSelect($('light'), state.lights.map((l, i) => i), state.lights.map((l) => l.name));
+  fillSelect($('soft'), scene.softShapes);
+  if (state.lights.length) selectLight(0);
+}
+
+function wireControls() {
+  $('method').addEventListener('change', (e) => setMethod(e.target.value));
+  $('two-sided').addEventListener('change', (e) => { state.twoSided = e.target.checked; changed(); });
+  $('wrap').addEventListener('change', (e) => { state.wrap = e.target.checked; changed(); });
+  $('darken').addEventListener('change', (e) => { state.darken = e.target.checked; changed(); });
+  $('map-size').addEventListener('change', (e) => { state.mapSize = Number(e.target.value); changed(); });
+  $('pcf').addEventListener('change', (e) => { state.pcf = Number(e.target.value); changed(); });
+  $('view').addEventListener('change', (e) => { if (!exported) setView(e.target.value); });
+  $('index').addEventListener('change', (e) => { state.index = Number(e.target.value); changed(); });
+  $('signed').addEventListener('change', (e) => { state.signed = e.target.checked; changed(); });
+  $('pass').addEventListener('input', (e) => { state.index = Number(e.target.value); changed(); });
+  $('light').addEventListener('change', (e) => selectLight(Number(e.target.value)));
+  $('soft').addEventListener('change', (e) => { state.lights[state.light].soft = e.target.value; changed(); });
+  ['lx', 'ly', 'lz'].forEach((id, k) => $(id).addEventListener('input', (e) => {
+    state.lights[state.light].position[k] = Number(e.target.value);
+    changed();
+  }));
+  $('reset').addEventListener('click', () => {
+    state.eye = [...scene.camera.eye];
+    state.target = [...scene.camera.target];
+    cameraMoved = false;
+    changed();
+  });
+  $('stats-button').addEventListener('click', async () => {
+    const response = await fetch('api/stats?' + query());
+    $('stats').textContent = response.ok ? formatStats(await response.json()) : await response.text();
+  });
+  $('save').addEventListener('click', async () => {
+    const response = await fetch('api/save?' + query());
+    if (!response.ok) { showError(await response.text()); return; }
+    const link = document.createElement('a');
+    link.href = URL.createObjectURL(new Blob([await response.text()], { type: 'text/yaml' }));
+    link.download = 'explore-state.yaml';
+    link.click();
+  });
+
+  const canvas = $('image');
+  let drag = null;
+  canvas.addEventListener('contextmenu', (e) => e.preventDefault());
+  canvas.addEventListener('mousedown', (e) => {
+    drag = { x: e.clientX, y: e.clientY, moved: false, pan: e.button === 2 || e.shiftKey };
+  });
+  window.addEventListener('mouseup', (e) => {
+    if (drag && !drag.moved && e.target === canvas && e.button === 0) {
+      const p = pixelAt(e);
+      if (p) (exported ? exportedHistory(p) : history(p));
+    }
+    drag = null;
+  });
+  canvas.addEventListener('mousemove', (e) => {
+    probe(e);
+    if (!drag || exported) return;
+    const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+    if (!drag.moved && Math.abs(dx) + Math.abs(dy) < 3) return;
+    drag.moved = true;
+    drag.x = e.clientX;
+    drag.y = e.clientY;
+    if (drag.pan) pan(dx, dy); else orbit(dx, dy);
+  });
+  canvas.addEventListener('wheel', (e) => {
+    if (exported) return;
+    e.preventDefault();
+    zoom(Math.exp(e.deltaY * 0.001));
+  }, { passive: false });
+  window.addEventListener('keydown', (e) => {
+    if (exported || e.target.tagName === 'INPUT' && e.target.type !== 'checkbox' && e.target.type !== 'range') return;
+    const key = e.key.toLowerCase();
+    // The Devil Shadow System's render modes [DSS article]: 0 the frame, 1 the volumes, 2 the
+    // translucent volumes; z toggles z-pass and z-fail; l moves the sliders to the next light.
+    if (key === '0') setView('frame');
+    else if (key === '1' && stencilMethod()) setView('volumes');
+    else if (key === '2' && stencilMethod()) setView('overlay');
+    else if (key === 'z') setMethod(state.method === 'zpass' ? 'zfail' : 'zpass');
+    else if (key === 'l' && state.lights.length) selectLight((state.light + 1) % state.lights.length);
+    else if (key === 'w') walk(1);
+    else if (key === 's') walk(-1);
+    else return;
+    e.preventDefault();
+  });
+}
+
+function formatStats(s) {
+  const lines = ['triangles in ' + s.triangles.in + ', clipped ' + s.triangles.clipped + ', culled ' + s.triangles.culled +
+    ', rasterized ' + s.triangles.rasterized,
+    'fragments ' + s.fragments.all + ', stencil failed ' + s.fragments.stencilFailed + ', depth failed ' +
+    s.fragments.depthFailed + ', stencil writes ' + s.fragments.stencilWrites + ', colour writes ' + s.fragments.colourWrites];
+  lines.push(...s.notes);
+  for (const t of s.timings) lines.push('time ' + t.pass.padEnd(24) + t.ms.toFixed(3).padStart(9) + ' ms');
+  for (const w of s.warnings) lines.push('warning: ' + w);
+  return lines.join('\n');
+}
+
+// ---- start
+async function start() {
+  const response = await fetch('api/scene');
+  const summary = await response.json();
+  if (summary.error) {
+    showError(summary.error);  // the scene's file:line:col message
+    return;
+  }
+  scene = summary;
+  $('source').textContent = scene.source + (scene.baseOverrides.length ? ' ' + scene.baseOverrides.map((o) => '-D ' + o).join(' ') : '');
+  state.eye = [...scene.camera.eye];
+  state.target = [...scene.camera.target];
+  state.method = scene.shadow.method;
+  state.twoSided = scene.shadow.two_sided;
+  state.wrap = scene.shadow.wrap;
+  state.darken = scene.shadow.darken_composite;
+  state.mapSize = scene.shadow.map_size;
+  state.pcf = scene.shadow.pcf;
+  state.lights = scene.lights.map((l) => ({ name: l.name, type: l.type, on: true, position: [...l.position], soft: l.soft }));
+  initial = JSON.parse(JSON.stringify(state));
+  fillSelect($('method'), scene.methods.map((m) => m.name));
+  $('method').value = state.method;
+  $('two-sided').checked = state.twoSided;
+  $('wrap').checked = state.wrap;
+  $('darken').checked = state.darken;
+  const sizes = [64, 128, 256, 512, 1024, 2048, 4096];
+  if (!sizes.includes(state.mapSize)) sizes.push(state.mapSize);
+  fillSelect($('map-size'), sizes.sort((a, b) => a - b));
+  $('map-size').value = String(state.mapSize);
+  const kernels = [1, 3, 5, 7, 9];
+  if (!kernels.includes(state.pcf)) kernels.push(state.pcf);
+  fillSelect($('pcf'), kernels.sort((a, b) => a - b), kernels.map((k) => k === 1 ? 'off' : k + ' x ' + k));
+  $('pcf').value = String(state.pcf);
+  $('image').width = $('marks').width = scene.width;
+  $('image').height = $('marks').height = scene.height;
+  fillLights();
+  fillViews();
+  wireControls();
+  changed();
+}
+
+// ---- the exported page: the views and their values are files beside it, no server
+function decodeValues(text) {
+  const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+  return new Float32Array(bytes.buffer);
+}
+
+function showExported(id) {
+  const v = exported.views.find((x) => x.id === id);
+  const image = new Image();
+  image.onload = () => {
+    const canvas = $('image');
+    canvas.width = $('marks').width = v.width;
+    canvas.height = $('marks').height = v.height;
+    canvas.getContext('2d').drawImage(image, 0, 0);
+    exploreStats.framesShown += 1;
+  };
+  image.src = id + '.png';
+  const text = window.SHADOWREF_VALUES[id];
+  lastImage = { width: v.width, height: v.height, valueName: v.values, values: text ? decodeValues(text) : null, info: v.info };
+  state.view = v.info.view;
+  showKey(v.info);
+  $('strip').hidden = true;
+}
+
+function exportedHistory(p) {
+  const box = $('history');
+  box.textContent = '';
+  const title = document.createElement('h2');
+  title.textContent = 'pixel ' + p.x + ',' + p.y + ' (row 0 is the bottom) in every view of this handout';
+  box.append(title);
+  const table = document.createElement('table');
+  table.append(row(['view', 'value'], 'th'));
+  for (const v of exported.views) {
+    const text = window.SHADOWREF_VALUES[v.id];
+    if (!text) continue;
+    const values = decodeValues(text);
+    const value = values[p.row * v.width + p.col];
+    table.append(row([v.label, v.values + ' ' + (Number.isFinite(value) ? Number(value.toPrecision(6)) : 'nothing drawn')], 'td'));
+  }
+  box.append(table);
+  const note = document.createElement('p');
+  note.textContent = 'Every fragment of the pixel: shadowref explore ' + (exported.scene.source || '') + ', or shadowref render --pixel-history ' + p.x + ',' + p.y;
+  box.append(note);
+}
+
+function startExported() {
+  document.body.classList.add('export');
+  scene = exported.scene;
+  $('source').textContent = scene.source + ' (handout: no server; the views were rendered by shadowref explore --export)';
+  $('state').textContent = exported.overrides.map((o) => '-D ' + o).join(' ');
+  fillSelect($('view'), exported.views.map((v) => v.id), exported.views.map((v) => v.label));
+  $('index-label').hidden = true;
+  $('signed-label').hidden = true;
+  $('view').addEventListener('change', (e) => showExported(e.target.value));
+  wireControls();
+  showExported(exported.views[0].id);
+}
+
+if (exported) startExported(); else start().catch((e) => showError('the page could not start: ' + e));

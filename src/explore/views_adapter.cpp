@@ -1,0 +1,392 @@
+#include "explore/views_adapter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "image/stencil_view.h"
+#include "scene/scene_sections.h"
+#include "shadow/draw_tag.h"
+#include "shadow/frame_renderer.h"
+#include "shadow/technique_registry.h"
+
+namespace shadowref::explore {
+
+namespace {
+
+// 8-bit colour exactly as the PNG writer makes it: clamp to [0, 1], round(c * 255) in double with
+// halves up, NaN as 0 — so that the explorer's frame is the bytes `shadowref render` writes.
+uint8_t toByte(double v01) {
+  if (!(v01 > 0.0)) return 0;
+  if (v01 >= 1.0) return 255;
+  return uint8_t(std::round(v01 * 255.0));
+}
+
+// The framebuffer's colour, top row first (the framebuffer's row 0 is the bottom).
+void colourToRgba(const Framebuffer& fb, ViewImage& out) {
+  out.width = fb.width();
+  out.height = fb.height();
+  out.rgba.assign(size_t(out.width) * size_t(out.height) * 4, 255);
+  for (int y = 0; y < fb.height(); ++y) {
+    const size_t row = size_t(fb.height() - 1 - y) * size_t(fb.width());
+    for (int x = 0; x < fb.width(); ++x) {
+      const glm::vec4 c = fb.colorAt(x, y);
+      uint8_t* p = &out.rgba[(row + size_t(x)) * 4];
+      p[0] = toByte(double(c.r));
+      p[1] = toByte(double(c.g));
+      p[2] = toByte(double(c.b));
+    }
+  }
+}
+
+// Values in framebuffer order (row 0 at the bottom) as grey, top row first, lo black and hi white;
+// values outside [lo, hi] (e.g. the cleared background) are drawn in `outside`.
+void greyToRgba(const std::vector<float>& values, int width, int height, double lo, double hi, ViewImage& out,
+                bool markOutside) {
+  out.width = width;
+  out.height = height;
+  out.rgba.assign(size_t(width) * size_t(height) * 4, 255);
+  out.values.assign(values.size(), 0.0f);
+  const double range = hi > lo ? hi - lo : 1.0;
+  for (int y = 0; y < height; ++y) {
+    const size_t from = size_t(y) * size_t(width);
+    const size_t to = size_t(height - 1 - y) * size_t(width);
+    for (int x = 0; x < width; ++x) {
+      const float v = values[from + size_t(x)];
+      out.values[to + size_t(x)] = v;
+      uint8_t* p = &out.rgba[(to + size_t(x)) * 4];
+      if (markOutside && !(v >= lo && v <= hi)) {
+        p[0] = 40, p[1] = 20, p[2] = 60;  // outside the range: a dark violet, not a grey
+        continue;
+      }
+      const uint8_t g = toByte((double(v) - lo) / range);
+      p[0] = p[1] = p[2] = g;
+    }
+  }
+}
+
+// The range of the finite values in [0, limit): the drawn pixels of a depth buffer or map (the
+// cleared ones hold the far value).
+std::pair<double, double> rangeOf(const std::vector<float>& values, double limit) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (float v : values)
+    if (std::isfinite(v) && v < limit) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
+  if (!(lo <= hi)) return {0.0, 1.0};
+  if (lo == hi) return {lo, lo + 1e-6};
+  return {lo, hi};
+}
+
+// Eye depth (distance along the view axis) of window depth d in [0, 1] (glDepthRange 0..1) under
+// the camera's projection; the infinite projection when far is infinite ([Kuhn 2016, §3.3]).
+double eyeDepth(double d, const Camera& camera) {
+  const double n = camera.nearPlane, f = camera.farPlane;
+  const double ndc = 2.0 * d - 1.0;
+  if (!std::isfinite(f)) return 2.0 * n / (1.0 - ndc);
+  return 2.0 * f * n / ((f + n) - ndc * (f - n));
+}
+
+// The numbers of the lights and passes there are, for the page's choosers.
+void addNames(const FrameResult& frame, const std::vector<std::string>& passes, const Scene& scene, nlohmann::json& info) {
+  info["passes"] = passes;
+  info["shadowMaps"] = frame.shadowMapNames;
+  nlohmann::json lights = nlohmann::json::array();
+  for (const Light& l : scene.lights) lights.push_back(l.name);
+  info["lights"] = lights;
+}
+
+FrameOptions baseOptions(const PipelineMaker& pipelines) {
+  FrameOptions options;
+  options.pipelines = &pipelines;
+  options.pipeline = pipelines.kind();
+  options.threads = pipelines.threads();
+  return options;
+}
+
+}  // namespace
+
+bool parseView(const std::string& name, View& view) {
+  static const std::pair<const char*, View> names[] = {
+      {"frame", View::Frame},         {"stencil", View::Stencil}, {"volumes", View::Volumes},
+      {"overlay", View::Overlay},     {"depth", View::Depth},     {"shadowmap", View::ShadowMap},
+      {"visibility", View::Visibility}, {"pass", View::Pass}};
+  for (const auto& [n, v] : names)
+    if (name == n) {
+      view = v;
+      return true;
+    }
+  return false;
+}
+
+const char* viewName(View view) {
+  switch (view) {
+    case View::Frame: return "frame";
+    case View::Stencil: return "stencil";
+    case View::Volumes: return "volumes";
+    case View::Overlay: return "overlay";
+    case View::Depth: return "depth";
+    case View::ShadowMap: return "shadowmap";
+    case View::Visibility: return "visibility";
+    case View::Pass: return "pass";
+  }
+  return "?";
+}
+
+ViewImage renderView(const Scene& scene, const ViewRequest& request, const PipelineMaker& pipelines) {
+  FrameOptions options = baseOptions(pipelines);
+  ViewImage out;
+  std::vector<std::string> passes;
+  const View view = request.view;
+  const bool counts = techniqueOf(scene.shadow).countsInStencil;
+  if (view == View::Stencil && !counts)
+    throw std::runtime_error("the method '" + scene.shadow.method + "' keeps no stencil counts; choose a shadow-volume method");
+  if (view == View::Volumes || view == View::Overlay) {
+    if (!counts) throw std::runtime_error("the method '" + scene.shadow.method + "' draws no shadow volumes");
+    options.volumeView = view == View::Volumes ? VolumeViewMode::FrontBack : VolumeViewMode::Overlay;
+  }
+  options.keepStencil = view == View::Stencil;
+  options.keepShadowMaps = view == View::ShadowMap;
+  options.keepVisibility = view == View::Visibility;
+  bool passFound = false;
+  options.onPass = [&](const std::string& pass, const Framebuffer& fb) {
+    const int number = int(passes.size());
+    passes.push_back(pass);
+    if (view != View::Pass || number != request.index) return;
+    passFound = true;
+    if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
+      StencilViewOptions sv;
+      sv.signedCounts = request.signedCounts;
+      sv.legend = false;
+      const Image8 image = stencilFalseColour(fb, sv);
+      out.width = image.width, out.height = image.height;
+      out.rgba.assign(size_t(image.width) * size_t(image.height) * 4, 255);
+      for (size_t i = 0; i < size_t(image.width) * size_t(image.height); ++i)
+        for (int k = 0; k < 3; ++k) out.rgba[i * 4 + size_t(k)] = image.pixels[i * 3 + size_t(k)];
+      out.valueName = "count";
+      out.values.resize(fb.stencil().size());
+      for (int y = 0; y < fb.height(); ++y)
+        for (int x = 0; x < fb.width(); ++x)
+          out.values[size_t(fb.height() - 1 - y) * size_t(fb.width()) + size_t(x)] =
+              float(stencilCount(fb.stencil()[size_t(y) * size_t(fb.width()) + size_t(x)], request.signedCounts));
+    } else if (fb.hasColor()) {
+      colourToRgba(fb, out);
+    }
+  };
+  const FrameResult frame = renderFrame(scene, options);
+  switch (view) {
+    case View::Frame:
+    case View::Volumes:
+    case View::Overlay: colourToRgba(frame.framebuffer, out); break;
+    case View::Stencil: {
+      if (request.index < 0 || size_t(request.index) >= frame.stencilPerLight.size())
+        throw std::invalid_argument("light " + std::to_string(request.index) + ": there are " +
+                                    std::to_string(frame.stencilPerLight.size()) + " stencil counts (one per light)");
+      const PixelVector<uint8_t>& stencil = frame.stencilPerLight[size_t(request.index)];
+      const int w = frame.framebuffer.width(), h = frame.framebuffer.height();
+      StencilViewOptions sv;
+      sv.signedCounts = request.signedCounts;
+      sv.legend = false;
+      const Image8 image = stencilFalseColour(std::span<const uint8_t>(stencil.data(), stencil.size()), w, h, sv);
+      out.width = w, out.height = h;
+      out.rgba.assign(size_t(w) * size_t(h) * 4, 255);
+      out.values.resize(size_t(w) * size_t(h));
+      std::vector<int> present;
+      for (size_t i = 0; i < size_t(w) * size_t(h); ++i)
+        for (int k = 0; k < 3; ++k) out.rgba[i * 4 + size_t(k)] = image.pixels[i * 3 + size_t(k)];
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const int c = stencilCount(stencil[size_t(y) * size_t(w) + size_t(x)], request.signedCounts);
+          out.values[size_t(h - 1 - y) * size_t(w) + size_t(x)] = float(c);
+          present.push_back(c);
+        }
+      std::sort(present.begin(), present.end());
+      present.erase(std::unique(present.begin(), present.end()), present.end());
+      nlohmann::json legend = nlohmann::json::array();
+      for (int c : present) {
+        const std::array<uint8_t, 3> rgb = stencilColour(c);
+        legend.push_back({{"count", c}, {"rgb", {rgb[0], rgb[1], rgb[2]}}});
+      }
+      out.info["legend"] = legend;
+      out.info["light"] = frame.stencilLightNames[size_t(request.index)];
+      out.valueName = "count";
+      break;
+    }
+    case View::Depth: {
+      const Framebuffer& fb = frame.framebuffer;
+      if (!fb.hasDepth()) throw std::runtime_error("this frame has no depth buffer");
+      std::vector<float> depth(fb.depthCodes().size());
+      for (size_t i = 0; i < depth.size(); ++i) {
+        const double d = fb.depthCodec().decode(fb.depthCodes()[i]);
+        // The cleared depth (1) is nothing drawn: +infinity, outside every range.
+        depth[i] = d >= 1.0 ? std::numeric_limits<float>::infinity() : float(eyeDepth(d, scene.camera));
+      }
+      const auto [lo, hi] = rangeOf(depth, std::numeric_limits<double>::infinity());
+      greyToRgba(depth, fb.width(), fb.height(), lo, hi, out, true);
+      out.valueName = "eye depth";
+      out.info["range"] = {lo, hi};
+      break;
+    }
+    case View::ShadowMap: {
+      if (frame.shadowMaps.empty()) throw std::runtime_error("the method '" + scene.shadow.method + "' renders no shadow map");
+      if (request.index < 0 || size_t(request.index) >= frame.shadowMaps.size())
+        throw std::invalid_argument("map " + std::to_string(request.index) + ": there are " +
+                                    std::to_string(frame.shadowMaps.size()) + " shadow maps");
+      const DepthTexture& map = frame.shadowMaps[size_t(request.index)];
+      const std::vector<float> depth = map.values();
+      const auto [lo, hi] = rangeOf(depth, 1.0);
+      greyToRgba(depth, map.width, map.height, lo, hi, out, true);
+      out.valueName = "stored depth";
+      out.info["range"] = {lo, hi};
+      out.info["map"] = frame.shadowMapNames[size_t(request.index)];
+      break;
+    }
+    case View::Visibility: {
+      if (request.index < 0 || size_t(request.index) >= frame.visibility.size())
+        throw std::invalid_argument("light " + std::to_string(request.index) + ": the scene has " +
+                                    std::to_string(frame.visibility.size()) + " lights");
+      greyToRgba(frame.visibility[size_t(request.index)], frame.framebuffer.width(), frame.framebuffer.height(), 0.0,
+                 1.0, out, false);
+      out.valueName = "visibility";
+      out.info["range"] = {0.0, 1.0};
+      break;
+    }
+    case View::Pass:
+      if (!passFound)
+        throw std::invalid_argument("pass " + std::to_string(request.index) + ": this frame has " +
+                                    std::to_string(passes.size()) + " passes");
+      out.info["pass"] = passes[size_t(request.index)];
+      break;
+  }
+  addNames(frame, passes, scene, out.info);
+  out.info["view"] = viewName(view);
+  return out;
+}
+
+namespace {
+
+// Records every fragment at the watched pixel together with the pass it belongs to: the events of
+// a pass arrive before the pass's onPass call, so each event is filed under the next pass name.
+class HistoryRecorder final : public FragmentObserver {
+ public:
+  explicit HistoryRecorder(const std::vector<Instance>& instances) : instances_(instances) {}
+  void onFragment(const FragmentEvent& e) override {
+    nlohmann::json f;
+    f["draw"] = e.drawIndex;
+    f["what"] = describeDrawTag(e.drawTag, instances_);
+    f["kind"] = name(drawKindOf(e.drawTag));
+    f["facing"] = e.facing == FrontFacing ? "front" : "back";
+    f["depth"] = e.depth;
+    f["storedDepth"] = e.storedDepth;
+    f["stencilTest"] = e.stencilPassed;
+    f["depthTest"] = e.stencilPassed ? nlohmann::json(e.depthPassed) : nlohmann::json(nullptr);
+    f["stencilBefore"] = int(e.stencilBefore);
+    f["stencilAfter"] = int(e.stencilAfter);
+    if (e.colorAfter != e.colorBefore) f["colour"] = {e.colorAfter.r, e.colorAfter.g, e.colorAfter.b};
+    pending_.push_back(std::move(f));
+  }
+  // A pass ended: its fragments are the pending ones.
+  void endPass(const std::string& pass) {
+    const size_t at = pass.rfind("-L");
+    const std::string light = at == std::string::npos ? "" : pass.substr(at + 1);
+    for (nlohmann::json& f : pending_) {
+      f["pass"] = pass;
+      f["light"] = light;
+      fragments_.push_back(std::move(f));
+    }
+    pending_.clear();
+  }
+  nlohmann::json fragments() {
+    endPass("(after the last pass)");
+    return fragments_;
+  }
+
+ private:
+  const std::vector<Instance>& instances_;
+  nlohmann::json pending_ = nlohmann::json::array();
+  nlohmann::json fragments_ = nlohmann::json::array();
+};
+
+}  // namespace
+
+nlohmann::json pixelHistory(const Scene& scene, int x, int y) {
+  const std::vector<Instance> instances = scene.instances();
+  HistoryRecorder recorder(instances);
+  FrameOptions options;
+  options.pipeline = PipelineKind::Reference;  // the pixel history's events are the reference's
+  options.watchX = x;
+  options.watchY = y;
+  options.observer = &recorder;
+  options.keepVisibility = true;
+  options.keepStencil = techniqueOf(scene.shadow).countsInStencil;
+  options.onPass = [&](const std::string& pass, const Framebuffer&) { recorder.endPass(pass); };
+  const FrameResult frame = renderFrame(scene, options);
+  nlohmann::json out;
+  out["x"] = x;
+  out["y"] = y;
+  out["fragments"] = recorder.fragments();
+  const glm::vec4 c = frame.framebuffer.colorAt(x, y);
+  out["colour"] = {toByte(double(c.r)), toByte(double(c.g)), toByte(double(c.b))};
+  const size_t i = size_t(y) * size_t(frame.framebuffer.width()) + size_t(x);
+  nlohmann::json visibility = nlohmann::json::object();
+  for (size_t l = 0; l < frame.visibility.size(); ++l) visibility[scene.lights[l].name] = frame.visibility[l][i];
+  out["visibility"] = visibility;
+  nlohmann::json stencil = nlohmann::json::object();
+  for (size_t l = 0; l < frame.stencilPerLight.size(); ++l)
+    stencil[frame.stencilLightNames[l]] = int(frame.stencilPerLight[l][i]);
+  out["stencil"] = stencil;
+  return out;
+}
+
+nlohmann::json sceneSummary(const Scene& scene) {
+  nlohmann::json s;
+  s["source"] = scene.sourceFile;
+  s["width"] = scene.width;
+  s["height"] = scene.height;
+  const Camera& c = scene.camera;
+  s["camera"] = {{"eye", {c.eye.x, c.eye.y, c.eye.z}},
+                 {"target", {c.target.x, c.target.y, c.target.z}},
+                 {"up", {c.up.x, c.up.y, c.up.z}},
+                 {"fov", c.fovYDegrees},
+                 {"near", c.nearPlane}};
+  nlohmann::json lights = nlohmann::json::array();
+  for (const Light& l : scene.lights) {
+    lights.push_back({{"name", l.name},
+                      {"type", std::string(enumName(lightTypeNames(), l.type))},
+                      {"position", {l.position.x, l.position.y, l.position.z}},
+                      {"direction", {l.direction.x, l.direction.y, l.direction.z}},
+                      {"soft", std::string(enumName(softShapeNames(), l.soft))}});
+  }
+  s["lights"] = lights;
+  const ShadowSettings& sh = scene.shadow;
+  s["shadow"] = {{"method", sh.method},     {"two_sided", sh.twoSidedStencil}, {"wrap", sh.wrapOps},
+                 {"darken_composite", sh.darkenComposite}, {"map_size", sh.mapSize}, {"pcf", sh.pcf}};
+  nlohmann::json methods = nlohmann::json::array();
+  for (const ShadowTechnique* t : techniques())
+    methods.push_back({{"name", std::string(t->name)}, {"summary", std::string(t->summary)},
+                       {"stencil", t->countsInStencil}});
+  s["methods"] = methods;
+  nlohmann::json shapes = nlohmann::json::array();
+  for (const auto& [n, v] : softShapeNames()) shapes.push_back(std::string(n));
+  s["softShapes"] = shapes;
+  const Aabb bounds = worldBounds(scene.instances());
+  s["bounds"] = {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}};
+  return s;
+}
+
+nlohmann::json frameStatistics(const Scene& scene, const PipelineMaker& pipelines) {
+  const FrameResult frame = renderFrame(scene, baseOptions(pipelines));
+  const RasterStats& st = frame.stats;
+  nlohmann::json out;
+  out["triangles"] = {{"in", st.trianglesIn}, {"clipped", st.trianglesClipped}, {"culled", st.trianglesCulled},
+                      {"rasterized", st.trianglesRasterized}};
+  out["fragments"] = {{"all", st.fragments}, {"stencilFailed", st.stencilFailed}, {"depthFailed", st.depthFailed},
+                      {"stencilWrites", st.stencilWrites}, {"colourWrites", st.colorWrites}};
+  out["notes"] = frame.notes;
+  nlohmann::json timings = nlohmann::json::array();
+  for (const PassTiming& t : frame.timings) timings.push_back({{"pass", t.pass}, {"ms", t.milliseconds}});
+  out["timings"] = timings;
+  out["warnings"] = frame.warnings;
+  return out;
+}
+
+}  // namespace shadowref::explore

@@ -1,0 +1,230 @@
+// The explorer in a real browser: starts `shadowref explore scenes/pumpkins.yaml`, loads its page
+// in headless Chromium, orbits, switches method and view with the documents' keys, clicks a pixel
+// and reads its history, compares the picture on the screen with `shadowref render` for the same
+// -D values, and checks that bad requests get a 400 and a broken scene its file:line:col on the
+// page, and that --export's handout works from file:// with no server. It saves screenshots of the walk-through in docs/teaching.md into SCREENSHOT_DIR.
+//   node tests/browser/explore.test.mjs SHADOWREF_BINARY [SCREENSHOT_DIR]
+// Run from the source folder (ctest does; label "browser").
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import {
+  launchBrowser, orbit, pressAndWait, settle, startExplorer, stopExplorer, waitForFrames, framesShown, imageBox,
+} from './explore_harness.mjs';
+
+const binary = process.argv[2];
+const shots = process.argv[3] || fs.mkdtempSync(path.join(os.tmpdir(), 'explore-shots-'));
+if (!binary) {
+  console.error('usage: node tests/browser/explore.test.mjs SHADOWREF_BINARY [SCREENSHOT_DIR]');
+  process.exit(2);
+}
+fs.mkdirSync(shots, { recursive: true });
+const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'explore-test-'));
+const started = Date.now();
+const step = (what) => console.log(`[${((Date.now() - started) / 1000).toFixed(1)} s] ${what}`);
+
+// The picture area of the page (the canvas) as a screenshot, PNG bytes.
+async function pictureShot(page, name) {
+  const box = await imageBox(page);
+  const png = await page.screenshot({ clip: box, type: 'png' });
+  if (name) fs.writeFileSync(path.join(shots, name), png);
+  return png;
+}
+
+// Decodes two PNGs in the page and counts the pixels whose R, G or B differ.
+async function differingPixels(page, pngA, pngB) {
+  return page.evaluate(async (a, b) => {
+    const decode = async (b64) => {
+      const image = new Image();
+      image.src = 'data:image/png;base64,' + b64;
+      await image.decode();
+      const c = document.createElement('canvas');
+      c.width = image.width;
+      c.height = image.height;
+      const g = c.getContext('2d');
+      g.drawImage(image, 0, 0);
+      return g.getImageData(0, 0, c.width, c.height);
+    };
+    const [x, y] = [await decode(a), await decode(b)];
+    if (x.width !== y.width || x.height !== y.height) return { size: [x.width, x.height, y.width, y.height] };
+    let differing = 0;
+    for (let i = 0; i < x.data.length; i += 4)
+      if (x.data[i] !== y.data[i] || x.data[i + 1] !== y.data[i + 1] || x.data[i + 2] !== y.data[i + 2]) differing += 1;
+    return { differing, pixels: x.width * x.height };
+  }, Buffer.from(pngA).toString('base64'), Buffer.from(pngB).toString('base64'));
+}
+
+function cliRender(overrides, extra = []) {
+  const out = path.join(scratch, 'cli.png');
+  const args = ['render', 'scenes/pumpkins.yaml', '--quiet', '-o', out, ...extra];
+  for (const o of overrides) args.push('-D', o);
+  const stdout = execFileSync(binary, args, { encoding: 'utf8' });
+  return { png: fs.readFileSync(out), stdout };
+}
+
+const server = await startExplorer(binary, ['scenes/pumpkins.yaml']);
+const browser = await launchBrowser();
+let failed = false;
+try {
+  const page = await browser.newPage();
+  page.on('pageerror', (e) => { failed = true; console.error('page error:', e.message); });
+  await page.goto(server.url);
+  await waitForFrames(page, 1);
+  await settle(page);
+  step('page loaded, first frame shown');
+  assert.equal(await page.$eval('#method', (s) => s.value), 'zfail');
+  const zfailStart = await pictureShot(page, 'explore-pumpkins-zfail.png');
+
+  // Orbit: every mouse move is a new camera; the state names it as -D camera.eye.
+  await orbit(page, -60, 10);
+  await settle(page);
+  const orbited = await page.evaluate(() => window.exploreOverrides());
+  assert.ok(orbited.some((o) => o.startsWith('camera.eye=')), 'orbiting sets camera.eye: ' + orbited);
+  const afterOrbit = await pictureShot(page);
+  assert.ok((await differingPixels(page, zfailStart, afterOrbit)).differing > 1000, 'the orbit changed the picture');
+  step('orbited: ' + orbited.join(' '));
+
+  // The same bytes: the picture on the screen is `shadowref render` with the state's -D values.
+  const cli = cliRender(orbited);
+  const same = await differingPixels(page, await pictureShot(page), cli.png);
+  assert.deepEqual(same, { differing: 0, pixels: 800 * 640 }, 'screen vs shadowref render ' + orbited.join(' '));
+  step('the picture equals shadowref render pixel for pixel');
+
+  // Back to the scene's camera: inside the candle's shadow volume. Key Z switches to z-pass,
+  // which counts wrongly there ([Kuhn 2016, Fig. 5.8]); the picture changes.
+  await page.click('#reset');
+  await settle(page);
+  await pressAndWait(page, 'z');
+  assert.equal(await page.$eval('#method', (s) => s.value), 'zpass');
+  const zpass = await pictureShot(page, 'explore-pumpkins-zpass.png');
+  const inverted = await differingPixels(page, zfailStart, zpass);
+  assert.ok(inverted.differing > 10000, 'z-pass with the camera in the volume differs from z-fail: ' + JSON.stringify(inverted));
+  step(`z-pass differs from z-fail in ${inverted.differing} pixels`);
+
+  // Orbit up until the eye looks down through the lantern's lid: out of every volume, z-pass
+  // counts right and its picture is z-fail's. Reset walks back into the volume.
+  const centre = await imageBox(page);
+  await page.mouse.move(centre.x + 400, centre.y + 320);
+  const beforeZoom = await framesShown(page);
+  await page.mouse.wheel({ deltaY: -500 });  // closer to the target: under the porch's roof
+  await waitForFrames(page, beforeZoom + 1);
+  await settle(page);
+  await orbit(page, 0, 250);
+  await settle(page);
+  const above = await pictureShot(page, 'explore-pumpkins-zpass-above.png');
+  await pressAndWait(page, 'z');
+  const aboveZfail = await pictureShot(page);
+  const agree = await differingPixels(page, above, aboveZfail);
+  assert.equal(agree.differing, 0, 'above the lid z-pass equals z-fail: ' + JSON.stringify(agree));
+  await pressAndWait(page, 'z');
+  await page.click('#reset');
+  await settle(page);
+  step('above the lid z-pass and z-fail agree; back inside the volume');
+
+  // The stencil counts of z-pass: the legend lists the counts present, 255 (-1 wrapped) among them.
+  await page.select('#view', 'stencil');
+  await settle(page);
+  const legend = await page.$$eval('#legend span', (s) => s.map((x) => x.textContent));
+  assert.ok(legend.length >= 2 && legend.length < 20, 'a compact legend: ' + legend);
+  await pictureShot(page, 'explore-pumpkins-zpass-stencil.png');
+  await page.screenshot({ path: path.join(shots, 'explore-page-stencil.png') });
+  step('stencil view, legend ' + legend.join(' '));
+
+  // Mode 1 of the Devil Shadow System: the volumes.
+  await pressAndWait(page, '1');
+  assert.equal(await page.$eval('#view', (s) => s.value), 'volumes');
+  await pictureShot(page, 'explore-pumpkins-volumes.png');
+  await pressAndWait(page, 'z');  // back to z-fail
+  await pressAndWait(page, '0');
+  assert.equal(await page.$eval('#view', (s) => s.value), 'frame');
+  step('volumes view, back to z-fail and the frame');
+
+  // Click a pixel on the lit floor in front of the hollow pumpkin: its history lists the same
+  // fragments as `render --pixel-history` prints.
+  const box = await imageBox(page);
+  const col = 240, row = 420;
+  await page.mouse.click(box.x + col + 0.5, box.y + row + 0.5);
+  await page.waitForSelector('#history table', { timeout: 60000 });
+  const rows = await page.$$eval('#history table tr', (r) => r.length - 1);
+  const title = await page.$eval('#history h2', (h) => h.textContent);
+  const y = 640 - 1 - row;
+  assert.ok(title.startsWith(`pixel ${col},${y}:`), title);
+  const printed = cliRender(await page.evaluate(() => window.exploreOverrides()), ['--pixel-history', `${col},${y}`]).stdout;
+  const count = Number(printed.match(/: (\d+) fragments/)[1]);
+  assert.equal(rows, count, 'the page lists the fragments render --pixel-history prints');
+  const why = await page.$$eval('#history .why', (p) => p.map((x) => x.textContent));
+  assert.ok(why.length > 0, 'the history says why');
+  await page.screenshot({ path: path.join(shots, 'explore-page-history.png'), fullPage: true });
+  step(`pixel ${col},${y}: ${rows} fragments; ${why[0]}`);
+
+  // Bad requests: a 400 with the reason, and the server keeps serving.
+  const bad = await page.evaluate(async () => {
+    const answers = [];
+    for (const q of ['view=nope', 'index=-1', 'D=' + encodeURIComponent('shadow.map_size=3'), 'x=1', 'view=frame&view=depth',
+      'D=' + encodeURIComponent('camera.eye=[1,2')]) {
+      const r = await fetch('api/frame?' + q);
+      answers.push([q, r.status, await r.text()]);
+    }
+    const ok = await fetch('api/frame?view=frame');
+    answers.push(['ok', ok.status, '']);
+    return answers;
+  });
+  for (const [q, status, text] of bad.slice(0, -1)) {
+    assert.equal(status, 400, q + ': ' + text);
+    assert.ok(text.length > 5, q + ' has a message');
+  }
+  assert.ok(bad[2][2].includes('<command line>:1:'), 'an override error names its place: ' + bad[2][2]);
+  assert.equal(bad[bad.length - 1][1], 200);
+  step('bad requests: ' + bad.slice(0, -1).map((b) => b[1]).join(' '));
+  await page.close();
+
+  // A scene that does not load: its file:line:col message on the page.
+  const broken = path.join(scratch, 'broken.yaml');
+  fs.writeFileSync(broken, 'camera:\n  fov: 200\n');
+  const brokenServer = await startExplorer(binary, [broken]);
+  try {
+    const p2 = await browser.newPage();
+    await p2.goto(brokenServer.url);
+    await p2.waitForFunction(() => !document.getElementById('error').hidden, { timeout: 20000 });
+    const message = await p2.$eval('#error', (e) => e.textContent);
+    assert.ok(message.startsWith(broken + ':2:8:'), 'the page shows file:line:col: ' + message);
+    step('broken scene: ' + message);
+  } finally {
+    assert.equal(await stopExplorer(brokenServer, 'SIGTERM'), 0, 'SIGTERM stops the server cleanly');
+  }
+
+  // The handout: --export's folder opened from the file system, no server.
+  const handout = path.join(scratch, 'handout');
+  execFileSync(binary, ['explore', 'scenes/pumpkins.yaml', '--export', handout, '-D', 'shadow.method=zpass',
+    '-D', 'image.width=400', '-D', 'image.height=320'], { stdio: 'ignore' });
+  const p3 = await browser.newPage();
+  p3.on('pageerror', (e) => { failed = true; console.error('handout page error:', e.message); });
+  await p3.goto('file://' + path.join(handout, 'index.html'));
+  await waitForFrames(p3, 1);
+  await p3.select('#view', 'stencil-0');
+  await waitForFrames(p3, 2);
+  const hb = await imageBox(p3);
+  await p3.mouse.move(hb.x + 200.5, hb.y + 150.5);
+  const probe = await p3.$eval('#probe', (e) => e.textContent);
+  assert.ok(/^pixel 200,169 .*count \d+$/.test(probe), 'hovering the handout shows the count: ' + probe);
+  await p3.mouse.click(hb.x + 200.5, hb.y + 150.5);
+  await p3.waitForSelector('#history table');
+  const handoutRows = await p3.$$eval('#history table tr', (r) => r.length - 1);
+  assert.ok(handoutRows >= 4, 'the handout lists the pixel in every view with values');
+  step(`handout from file://: ${probe}; ${handoutRows} views at the clicked pixel`);
+} catch (e) {
+  failed = true;
+  console.error(e);
+} finally {
+  await browser.close();
+  const code = await stopExplorer(server, 'SIGINT');
+  if (code !== 0) {
+    failed = true;
+    console.error('explore did not stop cleanly on SIGINT: exit', code, server.stderr());
+  }
+  fs.rmSync(scratch, { recursive: true, force: true });
+}
+step(failed ? 'FAILED' : `passed; screenshots in ${shots}`);
+process.exit(failed ? 1 : 0);
