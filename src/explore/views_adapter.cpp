@@ -5,11 +5,14 @@
 #include <limits>
 #include <stdexcept>
 
-#include "image/stencil_view.h"
 #include "scene/scene_sections.h"
 #include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
+#include "shadow/scene_view.h"
 #include "shadow/technique_registry.h"
+#include "views/depth_view.h"
+#include "views/stencil_counts_view.h"
+#include "views/volume_colours.h"
 
 namespace shadowref::explore {
 
@@ -40,10 +43,9 @@ void colourToRgba(const Framebuffer& fb, ViewImage& out) {
   }
 }
 
-// Values in framebuffer order (row 0 at the bottom) as grey, top row first, lo black and hi white;
-// values outside [lo, hi] (e.g. the cleared background) are drawn in `outside`.
-void greyToRgba(const std::vector<float>& values, int width, int height, double lo, double hi, ViewImage& out,
-                bool markOutside) {
+// Values in framebuffer order (row 0 at the bottom) as grey, top row first, lo black and hi white
+// (the visibility: 0 in shadow, 1 lit, as --dump visibility).
+void greyToRgba(const std::vector<float>& values, int width, int height, double lo, double hi, ViewImage& out) {
   out.width = width;
   out.height = height;
   out.rgba.assign(size_t(width) * size_t(height) * 4, 255);
@@ -56,34 +58,53 @@ void greyToRgba(const std::vector<float>& values, int width, int height, double 
       const float v = values[from + size_t(x)];
       out.values[to + size_t(x)] = v;
       uint8_t* p = &out.rgba[(to + size_t(x)) * 4];
-      if (markOutside && !(v >= lo && v <= hi)) {
-        p[0] = 40, p[1] = 20, p[2] = 60;  // outside the range: a dark violet, not a grey
-        continue;
-      }
       const uint8_t g = toByte((double(v) - lo) / range);
       p[0] = p[1] = p[2] = g;
     }
   }
 }
 
-// The range of the finite values in [0, limit): the drawn pixels of a depth buffer or map (the
-// cleared ones hold the far value).
-std::pair<double, double> rangeOf(const std::vector<float>& values, double limit) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (float v : values)
-    if (std::isfinite(v) && v < limit) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
-  if (!(lo <= hi)) return {0.0, 1.0};
-  if (lo == hi) return {lo, lo + 1e-6};
-  return {lo, hi};
+// A teaching view's picture (RGBA, top row first) and its legend as the page draws them: the
+// swatches of a few counts, or the range of a colour bar or ramp with the colour map's 256 steps.
+void copyView(const views::View& view, ViewImage& out) {
+  out.width = view.picture.width;
+  out.height = view.picture.height;
+  out.rgba = view.picture.pixels;
+  const views::ViewLegend& legend = view.legend;
+  if (legend.kind == views::LegendKind::Swatches) {
+    nlohmann::json entries = nlohmann::json::array();
+    for (size_t i = 0; i < legend.values.size(); ++i)
+      entries.push_back({{"count", legend.values[i]},
+                         {"rgb", {legend.colours[i][0], legend.colours[i][1], legend.colours[i][2]}}});
+    out.info["legend"] = entries;
+  } else if (legend.kind == views::LegendKind::ColourBar || legend.kind == views::LegendKind::Ramp) {
+    out.info["range"] = {legend.lo, legend.hi};
+    nlohmann::json ramp = nlohmann::json::array();
+    for (int i = 0; i < 256; ++i) {
+      const views::Rgb8 c = views::viridis(double(i) / 255.0);
+      ramp.push_back({c[0], c[1], c[2]});
+    }
+    out.info["ramp"] = ramp;
+  }
 }
 
-// Eye depth (distance along the view axis) of window depth d in [0, 1] (glDepthRange 0..1) under
-// the camera's projection; the infinite projection when far is infinite ([Kuhn 2016, §3.3]).
-double eyeDepth(double d, const Camera& camera) {
-  const double n = camera.nearPlane, f = camera.farPlane;
-  const double ndc = 2.0 * d - 1.0;
-  if (!std::isfinite(f)) return 2.0 * n / (1.0 - ndc);
-  return 2.0 * f * n / ((f + n) - ndc * (f - n));
+// Values in framebuffer order (row 0 at the bottom) as the page's per-pixel values, top row first.
+std::vector<float> topRowFirst(const std::vector<float>& values, int width, int height) {
+  std::vector<float> out(values.size());
+  for (int y = 0; y < height; ++y)
+    std::copy_n(values.begin() + ptrdiff_t(y) * width, width, out.begin() + ptrdiff_t(height - 1 - y) * width);
+  return out;
+}
+
+// The stencil view of `stencil` (framebuffer order), with its counts as the per-pixel values.
+void stencilToView(std::span<const uint8_t> stencil, int w, int h, bool signedCounts, ViewImage& out) {
+  views::StencilViewSettings settings;
+  settings.signedCounts = signedCounts;
+  copyView(views::stencilView(stencil, w, h, settings), out);
+  std::vector<float> counts(stencil.size());
+  for (size_t i = 0; i < stencil.size(); ++i) counts[i] = float(views::stencilCountOf(stencil[i], signedCounts));
+  out.values = topRowFirst(counts, w, h);
+  out.valueName = "count";
 }
 
 // The numbers of the lights and passes there are, for the page's choosers.
@@ -143,6 +164,7 @@ ViewImage renderView(const Scene& scene, const ViewRequest& request, const Pipel
   if (view == View::Volumes || view == View::Overlay) {
     if (!counts) throw std::runtime_error("the method '" + scene.shadow.method + "' draws no shadow volumes");
     options.volumeView = view == View::Volumes ? VolumeViewMode::FrontBack : VolumeViewMode::Overlay;
+    if (view == View::Volumes) options.volumeColours = views::volumeColours(scene);  // as render --view volumes
   }
   options.keepStencil = view == View::Stencil;
   options.keepShadowMaps = view == View::ShadowMap;
@@ -154,20 +176,8 @@ ViewImage renderView(const Scene& scene, const ViewRequest& request, const Pipel
     if (view != View::Pass || number != request.index) return;
     passFound = true;
     if (pass.find("stencil") != std::string::npos && fb.hasStencil()) {
-      StencilViewOptions sv;
-      sv.signedCounts = request.signedCounts;
-      sv.legend = false;
-      const Image8 image = stencilFalseColour(fb, sv);
-      out.width = image.width, out.height = image.height;
-      out.rgba.assign(size_t(image.width) * size_t(image.height) * 4, 255);
-      for (size_t i = 0; i < size_t(image.width) * size_t(image.height); ++i)
-        for (int k = 0; k < 3; ++k) out.rgba[i * 4 + size_t(k)] = image.pixels[i * 3 + size_t(k)];
-      out.valueName = "count";
-      out.values.resize(fb.stencil().size());
-      for (int y = 0; y < fb.height(); ++y)
-        for (int x = 0; x < fb.width(); ++x)
-          out.values[size_t(fb.height() - 1 - y) * size_t(fb.width()) + size_t(x)] =
-              float(stencilCount(fb.stencil()[size_t(y) * size_t(fb.width()) + size_t(x)], request.signedCounts));
+      stencilToView(std::span<const uint8_t>(fb.stencil().data(), fb.stencil().size()), fb.width(), fb.height(),
+                    request.signedCounts, out);
     } else if (fb.hasColor()) {
       colourToRgba(fb, out);
     }
@@ -182,48 +192,27 @@ ViewImage renderView(const Scene& scene, const ViewRequest& request, const Pipel
         throw std::invalid_argument("light " + std::to_string(request.index) + ": there are " +
                                     std::to_string(frame.stencilPerLight.size()) + " stencil counts (one per light)");
       const PixelVector<uint8_t>& stencil = frame.stencilPerLight[size_t(request.index)];
-      const int w = frame.framebuffer.width(), h = frame.framebuffer.height();
-      StencilViewOptions sv;
-      sv.signedCounts = request.signedCounts;
-      sv.legend = false;
-      const Image8 image = stencilFalseColour(std::span<const uint8_t>(stencil.data(), stencil.size()), w, h, sv);
-      out.width = w, out.height = h;
-      out.rgba.assign(size_t(w) * size_t(h) * 4, 255);
-      out.values.resize(size_t(w) * size_t(h));
-      std::vector<int> present;
-      for (size_t i = 0; i < size_t(w) * size_t(h); ++i)
-        for (int k = 0; k < 3; ++k) out.rgba[i * 4 + size_t(k)] = image.pixels[i * 3 + size_t(k)];
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-          const int c = stencilCount(stencil[size_t(y) * size_t(w) + size_t(x)], request.signedCounts);
-          out.values[size_t(h - 1 - y) * size_t(w) + size_t(x)] = float(c);
-          present.push_back(c);
-        }
-      std::sort(present.begin(), present.end());
-      present.erase(std::unique(present.begin(), present.end()), present.end());
-      nlohmann::json legend = nlohmann::json::array();
-      for (int c : present) {
-        const std::array<uint8_t, 3> rgb = stencilColour(c);
-        legend.push_back({{"count", c}, {"rgb", {rgb[0], rgb[1], rgb[2]}}});
-      }
-      out.info["legend"] = legend;
+      stencilToView(std::span<const uint8_t>(stencil.data(), stencil.size()), frame.framebuffer.width(),
+                    frame.framebuffer.height(), request.signedCounts, out);
       out.info["light"] = frame.stencilLightNames[size_t(request.index)];
-      out.valueName = "count";
       break;
     }
     case View::Depth: {
       const Framebuffer& fb = frame.framebuffer;
       if (!fb.hasDepth()) throw std::runtime_error("this frame has no depth buffer");
-      std::vector<float> depth(fb.depthCodes().size());
-      for (size_t i = 0; i < depth.size(); ++i) {
+      // The views module's picture (eye distance on viridis, as --dump depth) and the eye distance
+      // of each pixel under the mouse (+infinity where nothing was drawn).
+      const SceneView camera = makeCameraView(scene, techniqueOf(scene.shadow).drawsVolumes);
+      std::vector<float> window(fb.depthCodes().size()), eye(window.size());
+      for (size_t i = 0; i < window.size(); ++i) {
         const double d = fb.depthCodec().decode(fb.depthCodes()[i]);
-        // The cleared depth (1) is nothing drawn: +infinity, outside every range.
-        depth[i] = d >= 1.0 ? std::numeric_limits<float>::infinity() : float(eyeDepth(d, scene.camera));
+        window[i] = float(d);
+        eye[i] = d >= 1.0 ? std::numeric_limits<float>::infinity()
+                          : float(views::eyeDistance(d, camera.projection, camera.viewport));
       }
-      const auto [lo, hi] = rangeOf(depth, std::numeric_limits<double>::infinity());
-      greyToRgba(depth, fb.width(), fb.height(), lo, hi, out, true);
+      copyView(views::depthView(window, fb.width(), fb.height(), camera.projection, camera.viewport), out);
+      out.values = topRowFirst(eye, fb.width(), fb.height());
       out.valueName = "eye depth";
-      out.info["range"] = {lo, hi};
       break;
     }
     case View::ShadowMap: {
@@ -233,10 +222,9 @@ ViewImage renderView(const Scene& scene, const ViewRequest& request, const Pipel
                                     std::to_string(frame.shadowMaps.size()) + " shadow maps");
       const DepthTexture& map = frame.shadowMaps[size_t(request.index)];
       const std::vector<float> depth = map.values();
-      const auto [lo, hi] = rangeOf(depth, 1.0);
-      greyToRgba(depth, map.width, map.height, lo, hi, out, true);
+      copyView(views::shadowMapView(depth, map.width, map.height), out);
+      out.values = topRowFirst(depth, map.width, map.height);
       out.valueName = "stored depth";
-      out.info["range"] = {lo, hi};
       out.info["map"] = frame.shadowMapNames[size_t(request.index)];
       break;
     }
@@ -245,7 +233,7 @@ ViewImage renderView(const Scene& scene, const ViewRequest& request, const Pipel
         throw std::invalid_argument("light " + std::to_string(request.index) + ": the scene has " +
                                     std::to_string(frame.visibility.size()) + " lights");
       greyToRgba(frame.visibility[size_t(request.index)], frame.framebuffer.width(), frame.framebuffer.height(), 0.0,
-                 1.0, out, false);
+                 1.0, out);
       out.valueName = "visibility";
       out.info["range"] = {0.0, 1.0};
       break;

@@ -161,7 +161,12 @@ function showKey(info) {
   bar.hidden = !info.range;
   if (info.range) {
     const c = $('bar').getContext('2d');
-    for (let i = 0; i < 256; i++) { c.fillStyle = 'rgb(' + i + ',' + i + ',' + i + ')'; c.fillRect(i, 0, 1, 12); }
+    // The view's colour map (viridis for depths and many counts), else a grey ramp.
+    for (let i = 0; i < 256; i++) {
+      const rgb = info.ramp ? info.ramp[i] : [i, i, i];
+      c.fillStyle = 'rgb(' + rgb.join(',') + ')';
+      c.fillRect(i, 0, 1, 12);
+    }
     $('bar-lo').textContent = Number(info.range[0]).toPrecision(5);
     $('bar-hi').textContent = Number(info.range[1]).toPrecision(5);
   }
