@@ -12,6 +12,7 @@
 #include "cli/render_metadata.h"
 #include "image/image_writer.h"
 #include "image/stencil_view.h"
+#include "scene/animation.h"
 #include "scene/checked_arithmetic.h"
 #include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
@@ -152,11 +153,26 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
       ->check(CLI::IsMember({"volumes", "volumes-overlay"}));
   render->add_option("--pixel-history", args.pixelHistory,
                      "x,y: print every fragment that touched that pixel (rendered by the reference pipeline)");
+  addSequenceOptions(*render, args.sequence);
 }
 
 int runRender(const RenderArgs& args) {
-  std::optional<Scene> scene = loadSceneOrReport(args.scene);
-  if (!scene) return kBadInput;
+  std::optional<Scene> loaded = loadSceneOrReport(args.scene);
+  if (!loaded) return kBadInput;
+  if (wantsSequence(args.sequence)) return runFrameSequence(args, *loaded);
+  if (loaded->animation) {
+    try {
+      loaded = sceneAt(*loaded, 0.0);  // a still of an animated scene is its frame 0
+    } catch (const SceneError& e) {
+      std::cerr << e.what() << '\n';
+      return kBadInput;
+    }
+  }
+  return renderScene(args, *loaded, FrameHooks{});
+}
+
+int renderScene(const RenderArgs& args, const Scene& sceneValue, const FrameHooks& hooks) {
+  const Scene* scene = &sceneValue;
 
   // Every flag is checked here, before the render: bad usage exits 2 with nothing written.
   FrameOptions options;
@@ -164,7 +180,7 @@ int runRender(const RenderArgs& args) {
   options.pipeline = args.pipeline == "reference" ? PipelineKind::Reference : PipelineKind::Fast;
   if (!checkMethodOrReport(args.method)) return kBadInput;
   options.method = args.method;
-  std::vector<std::string> outputs = args.outputs;
+  std::vector<std::string> outputs = hooks.outputs.empty() ? args.outputs : hooks.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
   bool anyExr = false;
   for (const std::string& out : outputs) {
@@ -251,7 +267,8 @@ int runRender(const RenderArgs& args) {
   std::string grids;  // --dump-region's text, one grid per light, printed after the render
   size_t stencilPasses = 0;
   try {
-    const OutputMetadata metadata = renderMetadata(args, *scene, options);
+    OutputMetadata metadata = renderMetadata(args, *scene, options);
+    metadata.extra.insert(metadata.extra.end(), hooks.metadata.begin(), hooks.metadata.end());
     const auto showing = [&](std::string content) {
       OutputMetadata m = metadata;
       m.content = std::move(content);
@@ -306,7 +323,7 @@ int runRender(const RenderArgs& args) {
     }
     for (const std::string& out : outputs) {
       writeOutput(frame, out, extras, frameMetadata, madeFolders);
-      if (!args.quiet) std::cerr << "wrote " << out << '\n';
+      if (!args.quiet && hooks.listWrites) std::cerr << "wrote " << out << '\n';
     }
     if (dumpStencil && stencilPasses == 0 && !args.quiet)
       std::cerr << "--dump stencil: this method uses no stencil buffer\n";
@@ -341,7 +358,8 @@ int runRender(const RenderArgs& args) {
     if (wants(args.dumps, "shadowmap") && frame.shadowMaps.empty() && !args.quiet)
       std::cerr << "--dump shadowmap: this method renders no shadow map\n";
     std::cout << grids;
-    if (!args.quiet)
+    if (hooks.onFrame) hooks.onFrame(frame.framebuffer);
+    if (!args.quiet && hooks.listWrites)
       for (const std::string& p : passFiles) std::cerr << "wrote " << p << '\n';
     if (args.stats) printStats(frame);
   } catch (const std::exception& e) {
