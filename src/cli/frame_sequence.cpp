@@ -271,7 +271,7 @@ void addSequenceOptions(CLI::App& render, SequenceArgs& args) {
 }
 
 bool wantsSequence(const SequenceArgs& a) {
-  return !a.frames.empty() || a.fps != 0.0 || !a.gif.empty() || !a.mp4.empty() || !a.movie.empty() ||
+  return !a.frames.empty() || !a.fps.empty() || !a.gif.empty() || !a.mp4.empty() || !a.movie.empty() ||
          !a.contactSheet.empty();
 }
 
@@ -330,12 +330,15 @@ int runFrameSequence(const RenderArgs& args, const Scene& scene) {
     std::cerr << error << '\n';
     return kBadInput;
   }
-  if (seq.fps != 0.0 && !(seq.fps > 0.0 && seq.fps <= kMaxAnimationFps)) {
-    std::cerr << "--fps: frames per second must be greater than 0 and at most " << kMaxAnimationFps << ", got "
-              << seq.fps << '\n';
-    return kBadInput;
+  double fps = scene.animation ? scene.animation->fps : 24.0;
+  if (!seq.fps.empty()) {
+    const auto [end, ec] = std::from_chars(seq.fps.data(), seq.fps.data() + seq.fps.size(), fps);
+    if (ec != std::errc() || end != seq.fps.data() + seq.fps.size() || !(fps > 0.0 && fps <= kMaxAnimationFps)) {
+      std::cerr << "--fps: expected a number of frames per second greater than 0 and at most " << kMaxAnimationFps
+                << ", got '" << seq.fps << "'\n";
+      return kBadInput;
+    }
   }
-  const double fps = seq.fps > 0.0 ? seq.fps : scene.animation ? scene.animation->fps : 24.0;
   std::vector<Movie> movies;
   const auto addMovie = [&](const std::string& path, const char* flag, const std::string& want) -> bool {
     if (path.empty()) return true;

@@ -19,7 +19,7 @@ struct RenderArgs;
 
 struct SequenceArgs {
   std::string frames;        // "A..B" (or "N"); empty: a still
-  double fps = 0.0;          // 0: the scene's animation.fps
+  std::string fps;           // empty: the scene's animation.fps (text: "0" and "abc" are errors)
   std::string gif, mp4;      // animated GIF / MP4 of the frames
   std::string movie;         // the same, the format by the extension (.gif or .mp4)
   std::string contactSheet;  // PNG: the frames in a grid, each labelled with its number

@@ -142,6 +142,7 @@ TEST_CASE("--frames: bad ranges and flags exit 2 and write nothing", "[cli][fram
            {"--frames 0..200000", "more than the 100000"},
            {"--frames 0..2 --fps 0", "--fps"},
            {"--frames 0..2 --fps 5000", "--fps"},
+           {"--frames 0..2 --fps fast", "--fps"},
            {"--gif " + q(out / "a.gif"), "need --frames"},
            {"--frames 0..2 --gif " + q(out / "a.png"), "ending in .gif"},
            {"--frames 0..2 --movie " + q(out / "a.avi"), ".gif or .mp4"},
