@@ -378,6 +378,18 @@ int runFrameSequence(const RenderArgs& args, const Scene& scene) {
     }
   }
 
+  // Every frame's scene is checked before the first is rendered (a camera that passes through its
+  // target halfway is bad input like any other): exit 2 with nothing written. Evaluating costs a
+  // copy of the scene graph per frame, little against rendering it.
+  if (scene.animation) {
+    try {
+      for (int64_t n = range->first; n <= range->last; ++n) (void)sceneAt(scene, frameTime(n, fps));
+    } catch (const SceneError& e) {
+      std::cerr << e.what() << '\n';
+      return kBadInput;
+    }
+  }
+
   std::vector<std::string> outputs = args.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
   const std::vector<int64_t> sheetIndices = seq.contactSheet.empty() ? std::vector<int64_t>{} : contactSheetFrames(range->count());
@@ -392,6 +404,13 @@ int runFrameSequence(const RenderArgs& args, const Scene& scene) {
   try {
     for (const std::string& f : extraFiles) ensureParentDirectory(f, &madeFolders);
     withMovieFiles(movies, 0, [&] {
+      // On any failure the encoders stop before their temporary files are removed.
+      struct StopEncoders {
+        std::vector<Movie>& movies;
+        ~StopEncoders() {
+          for (Movie& m : movies) m.encoder.reset();
+        }
+      } stop{movies};
       size_t nextTile = 0;
       for (int64_t n = range->first; n <= range->last; ++n) {
         const double t = frameTime(n, fps);
