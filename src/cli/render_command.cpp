@@ -137,7 +137,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
                      "'fast' (default: the executor, threaded) or 'reference' (the readable GL pipeline, one thread); "
                      "both give the same bytes")
       ->check(CLI::IsMember({"reference", "fast"}));
-  render->add_flag("--quiet", args.quiet, "Print nothing but errors");
+  render->add_flag("--quiet", args.quiet, "Print nothing but errors (and no progress bar for --frames)");
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
   render->add_option("--dump", args.dumps,
                      "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (per light: false-colour "
