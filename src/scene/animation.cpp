@@ -123,9 +123,11 @@ void readCamera(const YamlValue& v, Interpolation interp, CameraTracks& camera) 
   if (const YamlValue* x = v.find("fov")) camera.fov = readTrack<double>(*x, "animation.camera.fov", interp, readFov);
 }
 
-void readLights(const YamlValue& v, Interpolation interp, const Scene& scene, std::vector<LightTracks>& out) {
+void readLights(const YamlValue& v, Interpolation interp, const Scene& scene, const std::set<std::string>& removed,
+                std::vector<LightTracks>& out) {
   if (!v.isMap()) failAt(v.at, "animation.lights: expected a map of light name: tracks, got " + std::string(v.kindName()));
   for (const YamlEntry& e : v.entries) {
+    if (removed.count(e.key)) continue;
     const std::string path = "animation.lights." + e.key;
     LightTracks tracks;
     bool found = false;
@@ -178,10 +180,16 @@ void findNodes(const std::vector<Node>& nodes, const std::string& prefix, std::v
   }
 }
 
-void readNodes(const YamlValue& v, Interpolation interp, const Scene& scene, std::vector<NodeTracks>& out) {
+void readNodes(const YamlValue& v, Interpolation interp, const Scene& scene, const std::set<std::string>& removed,
+               std::vector<NodeTracks>& out) {
   if (!v.isMap())
     failAt(v.at, "animation.nodes: expected a map of node path (\"room/table\"): tracks, got " + std::string(v.kindName()));
   for (const YamlEntry& e : v.entries) {
+    // A node -D removed takes its descendants with it.
+    if (std::any_of(removed.begin(), removed.end(), [&](const std::string& r) {
+          return e.key == r || e.key.compare(0, r.size() + 1, r + "/") == 0;
+        }))
+      continue;
     const std::string path = "animation.nodes." + e.key;
     std::vector<std::vector<size_t>> found;
     std::vector<std::string> all;
@@ -261,7 +269,8 @@ double Animation::lastKeyTime() const {
   return latest;
 }
 
-Animation readAnimation(const YamlValue& section, const Scene& scene, const ResourceLimits& limits) {
+Animation readAnimation(const YamlValue& section, const Scene& scene, const ResourceLimits& limits,
+                        const RemovedNames& removed) {
   if (!section.isMap())
     failAt(section.at, "animation: expected a map (fps, interpolation, camera, lights, nodes), got " +
                            std::string(section.kindName()));
@@ -281,8 +290,8 @@ Animation readAnimation(const YamlValue& section, const Scene& scene, const Reso
     if (!v->isMap()) failAt(v->at, "animation.camera: expected a map of tracks (eye, target, fov)");
     readCamera(*v, interp, a.camera);
   }
-  if (const YamlValue* v = section.find("lights")) readLights(*v, interp, scene, a.lights);
-  if (const YamlValue* v = section.find("nodes")) readNodes(*v, interp, scene, a.nodes);
+  if (const YamlValue* v = section.find("lights")) readLights(*v, interp, scene, removed.lights, a.lights);
+  if (const YamlValue* v = section.find("nodes")) readNodes(*v, interp, scene, removed.nodes, a.nodes);
   return a;
 }
 

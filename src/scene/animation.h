@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -74,8 +75,13 @@ struct Animation {
 };
 
 // Reads the `animation:` section against the loaded scene (lights by name, nodes by path).
-// Throws SceneError at the offending key.
-Animation readAnimation(const YamlValue& section, const Scene& scene, const ResourceLimits& limits);
+// Tracks of the lights and node paths in `removed` (taken out by -D NAME=off) are skipped: the
+// command line turned them off. Throws SceneError at the offending key.
+struct RemovedNames {
+  std::set<std::string> lights, nodes;
+};
+Animation readAnimation(const YamlValue& section, const Scene& scene, const ResourceLimits& limits,
+                        const RemovedNames& removed = {});
 
 // The scene at time t (seconds): every track's value applied, lights that are off removed, the
 // result validated as a loaded scene is (a camera whose eye meets its target, a zero direction,

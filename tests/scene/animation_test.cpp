@@ -149,6 +149,23 @@ TEST_CASE("a light's on track leaves it out of the frame", "[animation]") {
   CHECK(sceneAt(scene, 1.0).lights.empty());
 }
 
+TEST_CASE("tracks of a light or node that -D turned off are skipped", "[animation]") {
+  const std::string animated = kStill +
+                               "animation:\n"
+                               "  lights: {lamp: {position: {keys: {0: [0, 4, 0], 2: [2, 4, 2]}}}}\n"
+                               "  nodes: {crate: {rotate: {keys: {0: [0, 0, 0], 2: [0, 90, 0]}}}}\n";
+  LoadOptions off;
+  off.overrides = {"lights.lamp=off", "nodes.crate=off"};
+  const Scene scene = loadSceneFromString(animated, "anim.yaml", off);
+  REQUIRE(scene.animation);
+  CHECK(scene.animation->lights.empty());
+  CHECK(scene.animation->nodes.empty());
+  const Scene frame = sceneAt(scene, 1.0);
+  CHECK(frame.lights.empty());
+  REQUIRE(frame.roots.size() == 1);
+  CHECK(frame.roots[0].name == "floor");
+}
+
 TEST_CASE("animation section errors point at the key", "[animation]") {
   CHECK_THAT(yamlErrorOf(kStill + "animation:\n  cameras: {}\n"),
              StartsWith("t.yaml:13:3: ") && Contains("cameras") && Contains("camera"));
