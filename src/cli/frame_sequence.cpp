@@ -470,8 +470,8 @@ int runFrameSequence(const RenderArgs& args, const Scene& scene) {
       std::cerr << "wrote " << range->count() << " frame" << (range->count() == 1 ? "" : "s") << ": "
                 << numberedPath(o, range->first) << (range->count() > 1 ? " to " + numberedPath(o, range->last) : "") << '\n';
     for (const std::string& f : extraFiles) std::cerr << "wrote " << f << '\n';
-    std::fprintf(stderr, "%lld frames at %s fps (t = %s to %s s) in %.2f s, %.3f s per frame\n",
-                 (long long)range->count(), formatNumber(fps).c_str(), formatNumber(frameTime(range->first, fps)).c_str(),
+    std::fprintf(stderr, "%lld frame%s at %s fps (t = %s to %s s) in %.2f s, %.3f s per frame\n",
+                 (long long)range->count(), range->count() == 1 ? "" : "s", formatNumber(fps).c_str(), formatNumber(frameTime(range->first, fps)).c_str(),
                  formatNumber(frameTime(range->last, fps)).c_str(), seconds(), seconds() / double(range->count()));
     if (!scene.animation) std::cerr << "note: the scene has no animation section: every frame is the same\n";
   }
