@@ -7,7 +7,7 @@
 // (it holds minimal.yaml at 16x16, bad.yaml, a.png and b.exr, which inputs name by name):
 // an argument with a '/' is not tried (no path outside the folder, no /dev/zero); render gets
 // "-D image.width=16 -D image.height=16 -D shadow.map_size=64" after the input's own overrides
-// and one thread. Every file a run leaves is removed after it, and the four files are restored
+// and one thread; a frame sequence at most 4 frames and no movie. Every file a run leaves is removed after it, and the four files are restored
 // (an input may name one as its output).
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -61,6 +61,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   addCommands(app, parsed);
   if (parseCommandLine(app, int(argv.size()), argv.data())) return 0;
   if (app.got_subcommand("bench") || app.got_subcommand("explore")) return 0;  // timing; a server
+  // A frame sequence renders every frame of its range, and a movie runs ffmpeg: a valid range is
+  // tried only up to 4 frames and without a movie (a bad range or movie name is still checked).
+  const SequenceArgs& sequence = parsed.render.sequence;
+  std::string rangeError;
+  if (const std::optional<FrameRange> range = parseFrameRange(sequence.frames, rangeError);
+      range && (range->count() > 4 || !sequence.gif.empty() || !sequence.mp4.empty() || !sequence.movie.empty()))
+    return 0;
   for (const char* bound : {"image.width=16", "image.height=16", "shadow.map_size=64"})
     parsed.render.scene.overrides.push_back(bound);
   parsed.render.threads = 1;

@@ -50,6 +50,14 @@ class Scene {
   int height() const;
   std::string method() const;  // the scene's shadow.method
 
+  // Animation (docs/scene-format.md, "Animation"): whether the scene has an `animation:` section,
+  // its frames per second (24 without one), and the still scene at `seconds` — frame n is
+  // at(n / fps()). The still of a scene without animation is a copy. Throws Error when that frame
+  // fails the scene's checks ("file:line:col: ... (the animation at t = 1.5 s)").
+  bool animated() const;
+  double fps() const;
+  Scene at(double seconds) const;
+
   struct Impl;
   const Impl& impl() const { return *impl_; }
 

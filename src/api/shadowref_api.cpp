@@ -12,6 +12,7 @@
 #include "api/scene_impl.h"
 #include "image/image_writer.h"
 #include "image/output_metadata.h"
+#include "scene/animation.h"
 #include "scene/checked_arithmetic.h"
 #include "scene/scene.h"
 #include "scene/scene_error.h"
@@ -168,6 +169,11 @@ Scene Scene::fromString(const std::string& yaml, const std::string& name, const 
 int Scene::width() const { return impl_->scene.width; }
 int Scene::height() const { return impl_->scene.height; }
 std::string Scene::method() const { return impl_->scene.shadow.method; }
+bool Scene::animated() const { return impl_->scene.animation != nullptr; }
+double Scene::fps() const { return impl_->scene.animation ? impl_->scene.animation->fps : 24.0; }
+Scene Scene::at(double seconds) const {
+  return Scene(std::make_unique<Impl>(loadOrThrow(impl_->scene.sourceFile, [&] { return sceneAt(impl_->scene, seconds); })));
+}
 
 Frame render(const Scene& scene, const RenderOptions& options) {
   const shadowref::Scene& s = scene.impl().scene;

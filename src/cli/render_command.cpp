@@ -15,6 +15,7 @@
 #include "cli/render_option_checks.h"
 #include "image/image_writer.h"
 #include "image/stencil_view.h"
+#include "scene/animation.h"
 #include "scene/checked_arithmetic.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/scene_view.h"
@@ -124,7 +125,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
                      "Lossless compression of .exr outputs: 'rle' (default: fast, larger), 'zip' (smaller, about "
                      "five times the encoding time), 'none'")
       ->check(CLI::IsMember({"none", "rle", "zip"}));
-  render->add_flag("--quiet", args.quiet, "Print nothing but errors");
+  render->add_flag("--quiet", args.quiet, "Print nothing but errors (and no progress bar for --frames)");
   render->add_flag("--stats", args.stats, "Print triangle, fragment and stencil counts and time per pass");
   render->add_option("--dump", args.dumps,
                      "Teaching dumps, repeatable: 'passes' (one PNG per pass), 'stencil' (volume methods, per light: "
@@ -150,11 +151,26 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
   render->add_option("--pixel-history", args.pixelHistory,
                      "x,y: print every fragment that touched that pixel by pass and light, the clears, and each "
                      "shadow-map lookup (always rendered by the reference pipeline)");
+  addSequenceOptions(*render, args.sequence);
 }
 
 int runRender(const RenderArgs& args) {
-  std::optional<Scene> scene = loadSceneOrReport(args.scene);
-  if (!scene) return kBadInput;
+  std::optional<Scene> loaded = loadSceneOrReport(args.scene);
+  if (!loaded) return kBadInput;
+  if (wantsSequence(args.sequence)) return runFrameSequence(args, *loaded);
+  if (loaded->animation) {
+    try {
+      loaded = sceneAt(*loaded, 0.0);  // a still of an animated scene is its frame 0
+    } catch (const SceneError& e) {
+      std::cerr << e.what() << '\n';
+      return kBadInput;
+    }
+  }
+  return renderScene(args, *loaded, FrameHooks{});
+}
+
+int renderScene(const RenderArgs& args, const Scene& sceneValue, const FrameHooks& hooks) {
+  const Scene* scene = &sceneValue;
 
   // Every flag is checked here, before the render: bad usage exits 2 with nothing written.
   FrameOptions options;
@@ -168,7 +184,7 @@ int runRender(const RenderArgs& args) {
     return kBadInput;
   }
   const bool signedCounts = args.stencilView == "signed";
-  std::vector<std::string> outputs = args.outputs;
+  std::vector<std::string> outputs = hooks.outputs.empty() ? args.outputs : hooks.outputs;
   if (outputs.empty()) outputs.push_back(defaultOutputPath(args.scene.scene, ".png"));
   bool anyExr = false;
   for (const std::string& out : outputs) {
@@ -255,7 +271,8 @@ int runRender(const RenderArgs& args) {
   std::vector<std::string> madeFolders;  // by this render: taken away again if it fails
   std::string grids;  // --dump-region's text, one grid per light, printed after the render
   try {
-    const OutputMetadata metadata = renderMetadata(args, *scene, options);
+    OutputMetadata metadata = renderMetadata(args, *scene, options);
+    metadata.extra.insert(metadata.extra.end(), hooks.metadata.begin(), hooks.metadata.end());
     const auto showing = [&](std::string content) {
       OutputMetadata m = metadata;
       m.content = std::move(content);
@@ -309,7 +326,7 @@ int runRender(const RenderArgs& args) {
     }
     for (const std::string& out : outputs) {
       writeOutput(frame, out, extras, frameMetadata, madeFolders);
-      if (!args.quiet) std::cerr << "wrote " << out << '\n';
+      if (!args.quiet && hooks.listWrites) std::cerr << "wrote " << out << '\n';
     }
     if (wants(args.dumps, "depth") && frame.framebuffer.hasDepth()) {
       std::vector<float> depth(frame.framebuffer.depthCodes().size());
@@ -349,7 +366,8 @@ int runRender(const RenderArgs& args) {
                          passFiles, std::cout);
     }
     std::cout << grids;
-    if (!args.quiet)
+    if (hooks.onFrame) hooks.onFrame(frame.framebuffer);
+    if (!args.quiet && hooks.listWrites)
       for (const std::string& p : passFiles) std::cerr << "wrote " << p << '\n';
     if (args.stats) printStats(frame);
   } catch (const std::exception& e) {

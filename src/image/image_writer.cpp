@@ -181,6 +181,11 @@ void writePng8(const Image8& image, const std::string& path, const OutputMetadat
 
 void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha, const OutputMetadata& metadata) {
   if (!fb.hasColor()) throw std::invalid_argument("cannot write '" + path + "': the framebuffer has no colour buffer");
+  writePng8(colorImage(fb, withAlpha), path, metadata);
+}
+
+Image8 colorImage(const Framebuffer& fb, bool withAlpha) {
+  if (!fb.hasColor()) throw std::invalid_argument("the framebuffer has no colour buffer");
   Image8 image;
   image.width = fb.width();
   image.height = fb.height();
@@ -193,7 +198,7 @@ void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha, co
       for (int k = 0; k < image.channels; ++k) image.pixels[out + size_t(k)] = toByte(double(c[k]));
     }
   }
-  writePng8(image, path, metadata);
+  return image;
 }
 
 NamedChannel NamedChannel::floatChannel(std::string name, std::vector<float> values) {

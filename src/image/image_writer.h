@@ -42,6 +42,9 @@ void writePng8(const Image8& image, const std::string& path, const OutputMetadat
 void writePng(const Framebuffer& fb, const std::string& path, bool withAlpha = false,
               const OutputMetadata& metadata = {});
 
+// The bytes writePng writes: the colour buffer as 8-bit RGB (RGBA), top row first.
+Image8 colorImage(const Framebuffer& fb, bool withAlpha = false);
+
 // One extra EXR channel: 4-byte float or 32-bit unsigned values, width * height of them in
 // FRAMEBUFFER order (index y * width + x, row 0 at the bottom), flipped on writing like the
 // framebuffer's own channels.

@@ -39,6 +39,14 @@ inline constexpr double kMaxSceneNumber = 1e15;
 // nesting and mesh coordinates make of the bounded numbers above.
 inline constexpr double kMaxWorldMagnitude = 1e30;
 
+// Animation (the `animation:` section, `render --frames`): keys per track, and the frames and
+// frame rate one command may ask for. Evaluating a track is a binary search over its keys; a
+// sequence holds one frame at a time, so these bound the work, not memory.
+inline constexpr std::size_t kMaxAnimationKeys = 1u << 16;
+inline constexpr double kMaxAnimationFps = 1000.0;
+inline constexpr std::int64_t kMaxFrameNumber = 9'999'999;  // frame numbers 0 … this
+inline constexpr std::int64_t kMaxSequenceFrames = 100'000;  // frames in one --frames range
+
 // What a scene may make the renderer allocate, counted over the flattened scene graph (each
 // mesh node is one instance; a mesh used by n nodes counts n times). The `limits:` section of a
 // scene file or `-D limits.KEY=N` raises or lowers them.

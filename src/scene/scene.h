@@ -124,6 +124,8 @@ struct Instance {
   bool mirrored = false;  // det(world) < 0: windings flip in window space
 };
 
+struct Animation;  // scene/animation.h
+
 struct Scene {
   std::string sourceFile;  // for messages; "<builtin:room>" for generators
   int width = 800, height = 640;
@@ -136,6 +138,9 @@ struct Scene {
   std::vector<std::shared_ptr<Mesh>> meshes;
   std::vector<Node> roots;
   ShadowSettings shadow;
+  // The file's `animation:` section, or null for a still scene; sceneAt (scene/animation.h)
+  // evaluates it. Shared: copies of a scene share the immutable tracks.
+  std::shared_ptr<const Animation> animation;
 
   // The mesh nodes flattened, depth-first, children after their parent.
   std::vector<Instance> instances() const;

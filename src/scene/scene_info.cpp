@@ -1,9 +1,11 @@
 #include "scene/scene_info.h"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include "scene/adjacency.h"
+#include "scene/animation.h"
 #include "scene/scene_sections.h"
 
 namespace shadowref {
@@ -139,6 +141,12 @@ std::string describeScene(const Scene& scene, std::string_view shadowDetails) {
   for (const Instance& inst : scene.instances()) ++instances, instanceTriangles += inst.mesh->triangles.size();
   out << "total: " << instances << " instances, " << instanceTriangles << " triangles drawn (" << triangles
       << " in distinct meshes), world bounds " << box(sceneBounds) << "\n";
+  if (const Animation* a = scene.animation.get())
+    out << "animation: " << num(a->fps) << " fps, keys up to t = " << num(a->lastKeyTime()) << " s (frame "
+        << num(std::ceil(a->lastKeyTime() * a->fps)) << "); " << (a->camera.eye || a->camera.target || a->camera.fov ? "camera, " : "")
+        << a->lights.size() << (a->lights.size() == 1 ? " light, " : " lights, ") << a->nodes.size()
+        << (a->nodes.size() == 1 ? " node" : " nodes") << " animated (above: the values as "
+        << "written, which the tracks replace in each frame)\n";
   return out.str();
 }
 

@@ -2,6 +2,8 @@
 
 #include "scene/input_file.h"
 
+#include "scene/animation.h"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,7 +22,8 @@ namespace shadowref {
 namespace {
 
 const std::vector<std::string_view> kTopLevelKeys{"image",     "camera", "ambient", "background", "lights", "materials",
-                                                  "meshes",    "nodes",  "generator", "shadow", "limits"};
+                                                  "meshes",    "nodes",  "generator", "shadow", "limits",
+                                                  "animation"};
 
 // Light names and material names are how a file or a -D reaches what a generator made.
 void checkName(const std::string& name, const SourceLocation& at, const std::string& path) {
@@ -193,7 +196,27 @@ Scene buildScene(const YamlValue& root, const std::string& displayName, const st
     if (o.path[0].text != "generator" && o.path[0].text != "limits" && o.path[0].text != "meshes")
       applyOverride(o, scene, limits, where, removed);
   validateScene(scene, limits, where);
+  // The names -D took out: their tracks are skipped, not errors.
+  RemovedNames removedNames;
+  for (size_t i : removed.lights) removedNames.lights.insert(scene.lights[i].name);
+  for (const std::vector<size_t>& path : removed.nodes) {
+    const std::vector<Node>* level = &scene.roots;
+    std::string name;
+    for (size_t i : path) {
+      name += (name.empty() ? "" : "/") + (*level)[i].name;
+      level = &(*level)[i].children;
+    }
+    removedNames.nodes.insert(name);
+  }
   removeOverridden(removed, scene);
+  // Read against the finished scene: tracks name its lights and nodes as they are now.
+  if (const YamlValue* v = root.find("animation")) {
+    scene.animation = std::make_shared<const Animation>(readAnimation(*v, scene, limits, removedNames));
+    // The first and last frames are checked now, so `check` reports a camera that ends inside
+    // its target; frames between are checked as they are rendered.
+    (void)sceneAt(scene, 0.0);
+    (void)sceneAt(scene, scene.animation->lastKeyTime());
+  }
   return scene;
 }
 

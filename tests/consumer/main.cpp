@@ -42,6 +42,18 @@ int main() {
     } catch (const api::Error& e) {
       std::printf("error %s\n", e.what());
     }
+    // The room's light circles: frame 12 at 8 fps is t = 1.5 s, its key [-2, 2.6, 0], so that
+    // frame is the still room with the light written there; frame 0 is not.
+    const api::Scene circle = api::Scene::fromFile("scenes/anim_room_circle.yaml", {"image.width=64", "image.height=48"});
+    const api::Scene still = api::Scene::fromString(
+        "generator: {type: room, size: [8, 3, 6], wall_thickness: 0.2}\n"
+        "image: {width: 64, height: 48}\n"
+        "lights:\n  - {name: ceiling, position: [-2, 2.6, 0]}\n"
+        "shadow: {method: zfail}\n",
+        "still.yaml");
+    const api::Frame atKey = api::render(circle.at(12 / circle.fps()));
+    std::printf("animation %d fps %g frame 12 same as still %d frame 0 differs %d\n", int(circle.animated()), circle.fps(),
+                int(atKey.color == api::render(still).color), int(api::render(circle.at(0.0)).color != atKey.color));
     std::printf("version %s\n", api::version().c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "consumer: %s\n", e.what());

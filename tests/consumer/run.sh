@@ -26,7 +26,8 @@ expected='stencil zpass 0 0 0 0 0 0 0 -1 -1 -1 -1 -1
 stencil zfail 1 1 1 1 1 1 1 0 0 0 0 0
 history draw 41 volume side, object '"'"'room/table/top'"'"' stencil 0 -> 1
 history draw 92 lit pass, object '"'"'room/floor'"'"' stencil 1 -> 1
-error <command line>:1:13: image.width: expected a whole number, got '"'"'banana'"'"''
+error <command line>:1:13: image.width: expected a whole number, got '"'"'banana'"'"'
+animation 1 fps 8 frame 12 same as still 1 frame 0 differs 1'
 status=0
 for consumer in "$prefix/build/consumer" "$prefix/consumer-pc"; do
   out=$("$consumer")
