@@ -31,6 +31,7 @@ const std::vector<IncludeRule> kRules = {
     {"src/scene", {"exec/"}},
     {"src/image", {"exec/"}},
     {"src/api", {"exec/"}},
+    {"src/sweep", {"exec/"}},
 };
 
 // The quoted includes of a file, with their line numbers.
