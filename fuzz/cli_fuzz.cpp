@@ -1,7 +1,7 @@
 // libFuzzer target: the shadowref command line. Each line of the input is one argument; they are
 // parsed by the program's own parser (cli/command_line.h) and the chosen subcommand runs: render,
-// check, info and compare, with the validation of every option and value. `bench` is parsed but
-// not run (it only times frames).
+// check, info and compare, with the validation of every option and value. `bench` and `sweep` are
+// parsed but not run (they time frames; a sweep file's parser has its tests in tests/sweep).
 //
 // Bounds, so that each input is cheap and stays in the scratch folder fuzz/run.sh runs this in
 // (it holds minimal.yaml at 16x16, bad.yaml, a.png and b.exr, which inputs name by name):
@@ -60,7 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   CommandArgs parsed;
   addCommands(app, parsed);
   if (parseCommandLine(app, int(argv.size()), argv.data())) return 0;
-  if (app.got_subcommand("bench")) return 0;
+  if (app.got_subcommand("bench") || app.got_subcommand("sweep")) return 0;
   for (const char* bound : {"image.width=16", "image.height=16", "shadow.map_size=64"})
     parsed.render.scene.overrides.push_back(bound);
   parsed.render.threads = 1;

@@ -148,7 +148,7 @@ bool writePlot(const std::string& plot, const std::vector<std::pair<const Job*, 
     if (header) data << "\n\n";  // gnuplot's `index` counts the blocks so separated
   }
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 1100,720 font \"DejaVu Sans,10\"\n"
+  gp << "set terminal pngcairo noenhanced size 1100,720 font \"DejaVu Sans,10\"\n"
      << "set output \"" << name << ".png\"\n"
      << "set title \"" << plot << ": shadow error against time per frame (every point labelled)\"\n"
      << "set grid\nset key top right\nset logscale x\n"

@@ -110,7 +110,19 @@ std::string shortKey(const std::string& key) {
 struct Case {
   std::string label;
   std::vector<std::pair<std::string, std::string>> set;
+  std::vector<std::string> methods;  // empty: the group's
 };
+
+std::vector<std::string> readMethods(const YamlValue& v, const std::string& path) {
+  std::vector<std::string> methods;
+  for (size_t i = 0; i < requireList(v, path).items.size(); ++i) {
+    const YamlValue& m = v.items[i];
+    const std::string method = readText(m, path + "." + std::to_string(i));
+    if (!findTechnique(method)) failAt(m.at, path + "." + std::to_string(i) + ": " + unknownTechniqueMessage(method));
+    methods.push_back(method);
+  }
+  return methods;
+}
 
 struct GridAxis {
   std::string key;
@@ -139,15 +151,8 @@ void readGroup(const YamlValue& g, const std::string& path, const Defaults& defa
     scenes.emplace_back(written, opened.lexically_normal().string());
   }
 
-  const YamlValue* methodsValue = g.find("methods");
-  if (!methodsValue) failAt(g.at, path + ": a group needs methods");
   std::vector<std::string> methods;
-  for (size_t i = 0; i < requireList(*methodsValue, path + ".methods").items.size(); ++i) {
-    const YamlValue& m = methodsValue->items[i];
-    const std::string method = readText(m, path + ".methods." + std::to_string(i));
-    if (!findTechnique(method)) failAt(m.at, path + ".methods." + std::to_string(i) + ": " + unknownTechniqueMessage(method));
-    methods.push_back(method);
-  }
+  if (const YamlValue* v = g.find("methods")) methods = readMethods(*v, path + ".methods");
 
   std::vector<std::pair<std::string, std::string>> set = defaults.set;
   if (const YamlValue* v = g.find("set"))
@@ -159,15 +164,18 @@ void readGroup(const YamlValue& g, const std::string& path, const Defaults& defa
     for (size_t i = 0; i < v->items.size(); ++i) {
       const YamlValue& c = v->items[i];
       const std::string cpath = path + ".cases." + std::to_string(i);
-      checkKeys(c, cpath, {"label", "set"});
+      checkKeys(c, cpath, {"label", "set", "methods"});
       Case one;
       if (const YamlValue* l = c.find("label")) one.label = readText(*l, cpath + ".label");
+      if (const YamlValue* m = c.find("methods")) one.methods = readMethods(*m, cpath + ".methods");
       if (const YamlValue* s = c.find("set")) one.set = readSet(*s, cpath + ".set");
       cases.push_back(std::move(one));
     }
   } else {
     cases.emplace_back();
   }
+  for (const Case& c : cases)
+    if (methods.empty() && c.methods.empty()) failAt(g.at, path + ": a group needs methods (or each of its cases)");
 
   std::vector<GridAxis> grid;
   if (const YamlValue* v = g.find("grid")) {
@@ -192,19 +200,20 @@ void readGroup(const YamlValue& g, const std::string& path, const Defaults& defa
   const int repetitions =
       g.find("repetitions") ? readInt(*g.find("repetitions"), path + ".repetitions", 1, 10000) : defaults.repetitions;
 
-  size_t combinations = scenes.size() * methods.size() * cases.size() * frames.size();
+  size_t combinations = 1;  // of the grid's values
   for (const GridAxis& a : grid) {
     combinations *= a.values.size();
     if (combinations > kMaxJobs) break;
   }
-  if (combinations + jobs.size() > kMaxJobs)
+  size_t methodCount = 0;
+  for (const Case& c : cases) methodCount += c.methods.empty() ? methods.size() : c.methods.size();
+  if (combinations > kMaxJobs || scenes.size() * methodCount * frames.size() * combinations + jobs.size() > kMaxJobs)
     failAt(g.at, path + ": more than " + std::to_string(kMaxJobs) + " jobs in the sweep");
 
   for (const auto& [written, opened] : scenes)
-    for (const std::string& method : methods)
-      for (const Case& c : cases)
-        for (size_t combo = 0, count = combinations / (scenes.size() * methods.size() * cases.size() * frames.size());
-             combo < count; ++combo)
+    for (const Case& c : cases)
+      for (const std::string& method : c.methods.empty() ? methods : c.methods)
+        for (size_t combo = 0; combo < combinations; ++combo)
           for (int frame : frames) {
             Job job;
             job.scene = written;
@@ -215,7 +224,11 @@ void readGroup(const YamlValue& g, const std::string& path, const Defaults& defa
             job.reference = reference;
             job.repetitions = repetitions;
             job.groups = {groupName};
-            job.plots = {plot};
+            // "{scene}" in a plot's name: one plot per scene of the group.
+            std::string jobPlot = plot;
+            if (const size_t at = jobPlot.find("{scene}"); at != std::string::npos)
+              jobPlot.replace(at, 7, std::filesystem::path(written).stem().string());
+            job.plots = {jobPlot};
             // Later layers win: the file's and the group's `set`, the case's, then the grid.
             for (const auto& [k, v] : set) job.overrides[k] = v;
             for (const auto& [k, v] : c.set) job.overrides[k] = v;
