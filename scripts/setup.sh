@@ -6,7 +6,8 @@
 #   render  the compiler, CMake and the libraries the CLI links (glm, yaml-cpp, tinygltf, CLI11,
 #           libpng, OpenEXR, nettle); builds only the CLI (scripts/render-default.sh)
 #   test    + OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
-#           OSMesa (the conformance tests), clang and its runtimes (fuzzing); builds everything
+#           OSMesa (the conformance tests), clang and its runtimes (fuzzing), GNU parallel (the sweep
+#           scale-out test); builds everything
 #           (scripts/test.sh)
 #   bench   + gnuplot, hyperfine and GNU time, for the benchmark scripts (scripts/bench-*.sh)
 # Without --role: bench, i.e. everything.
@@ -23,7 +24,7 @@ render_packages=(
   libglm-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libpng-dev libopenexr-dev nettle-dev
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev)
+test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev parallel)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in
   render) packages=("${render_packages[@]}") ;;
