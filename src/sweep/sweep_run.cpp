@@ -99,8 +99,25 @@ bool recordIsComplete(const std::string& file, const Job& job, bool needTime) {
 
 std::string runJob(const Job& job, const RunOptions& options) {
   LoadOptions load;
-  for (const auto& [key, value] : job.overrides) load.overrides.push_back(key + "=" + value);
-  const Scene loaded = loadScene(job.scenePath, load);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : job.overrides) {
+    load.overrides.push_back(key + "=" + value);
+    keys.push_back(key);
+  }
+  Scene loaded;
+  try {
+    loaded = loadScene(job.scenePath, load);
+  } catch (const SceneError& e) {
+    // The loader places an error in the i-th override at "<command line>:i:column"; the user
+    // wrote it in the sweep file, so the error is reported there.
+    const SourceLocation& at = e.where();
+    if (at.file == kCommandLineFile && at.line >= 1 && size_t(at.line) <= keys.size()) {
+      const auto found = job.overrideAt.find(keys[size_t(at.line - 1)]);
+      if (found != job.overrideAt.end())
+        throw SceneError(found->second, e.message() + " (in " + job.scene + ")");
+    }
+    throw;
+  }
   const Scene& scene = sceneAtFrame(loaded, job.frame);
   const ShadowTechnique* technique = findTechnique(job.method);
   if (!technique) throw std::runtime_error(unknownTechniqueMessage(job.method));

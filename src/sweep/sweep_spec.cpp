@@ -20,12 +20,18 @@ namespace {
 // A job grid multiplies: a file of a few lines could otherwise ask for billions of jobs.
 constexpr size_t kMaxJobs = 100'000;
 
+// A -D value and where the sweep file writes it.
+struct Setting {
+  std::string key, value;
+  SourceLocation at;
+};
+
 // Settings a group inherits from the top of the file unless it sets them itself.
 struct Defaults {
   RecordWhat record{true, true, true};
   ReferenceSpec reference;
   int repetitions = 5;
-  std::vector<std::pair<std::string, std::string>> set;
+  std::vector<Setting> set;
 };
 
 // A -D value as text: a scalar as written, a list as "[a, b, c]" (what the scene loader reads
@@ -55,10 +61,10 @@ const YamlValue& requireList(const YamlValue& v, const std::string& path) {
 }
 
 // `set`: a map of -D keys to values.
-std::vector<std::pair<std::string, std::string>> readSet(const YamlValue& v, const std::string& path) {
+std::vector<Setting> readSet(const YamlValue& v, const std::string& path) {
   if (!v.isMap()) failAt(v.at, path + ": expected a map of -D keys to values, got " + v.kindName());
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const YamlEntry& e : v.entries) out.emplace_back(e.key, valueText(e.value, path + "." + e.key));
+  std::vector<Setting> out;
+  for (const YamlEntry& e : v.entries) out.push_back({e.key, valueText(e.value, path + "." + e.key), e.value.at});
   return out;
 }
 
@@ -109,7 +115,7 @@ std::string shortKey(const std::string& key) {
 
 struct Case {
   std::string label;
-  std::vector<std::pair<std::string, std::string>> set;
+  std::vector<Setting> set;
   std::vector<std::string> methods;  // empty: the group's
 };
 
@@ -127,6 +133,7 @@ std::vector<std::string> readMethods(const YamlValue& v, const std::string& path
 struct GridAxis {
   std::string key;
   std::vector<std::string> values;
+  std::vector<SourceLocation> at;
 };
 
 void readGroup(const YamlValue& g, const std::string& path, const Defaults& defaults,
@@ -154,7 +161,7 @@ void readGroup(const YamlValue& g, const std::string& path, const Defaults& defa
   std::vector<std::string> methods;
   if (const YamlValue* v = g.find("methods")) methods = readMethods(*v, path + ".methods");
 
-  std::vector<std::pair<std::string, std::string>> set = defaults.set;
+  std::vector<Setting> set = defaults.set;
   if (const YamlValue* v = g.find("set"))
     for (auto& kv : readSet(*v, path + ".set")) set.push_back(std::move(kv));
 
@@ -181,9 +188,12 @@ void readGroup(const YamlValue& g, const std::string& path, const Defaults& defa
   if (const YamlValue* v = g.find("grid")) {
     if (!v->isMap()) failAt(v->at, path + ".grid: expected a map of -D keys to lists of values, got " + v->kindName());
     for (const YamlEntry& e : v->entries) {
-      GridAxis axis{e.key, {}};
+      GridAxis axis{e.key, {}, {}};
       const std::string apath = path + ".grid." + e.key;
-      for (const YamlValue& item : requireList(e.value, apath).items) axis.values.push_back(valueText(item, apath));
+      for (const YamlValue& item : requireList(e.value, apath).items) {
+        axis.values.push_back(valueText(item, apath));
+        axis.at.push_back(item.at);
+      }
       grid.push_back(std::move(axis));
     }
   }
@@ -230,14 +240,15 @@ void readGroup(const YamlValue& g, const std::string& path, const Defaults& defa
               jobPlot.replace(at, 7, std::filesystem::path(written).stem().string());
             job.plots = {jobPlot};
             // Later layers win: the file's and the group's `set`, the case's, then the grid.
-            for (const auto& [k, v] : set) job.overrides[k] = v;
-            for (const auto& [k, v] : c.set) job.overrides[k] = v;
+            for (const Setting& x : set) job.overrides[x.key] = x.value, job.overrideAt[x.key] = x.at;
+            for (const Setting& x : c.set) job.overrides[x.key] = x.value, job.overrideAt[x.key] = x.at;
             std::string label = c.label;
             size_t rest = combo;
             for (size_t a = grid.size(); a-- > 0;) {  // the last axis varies fastest
-              const std::string& value = grid[a].values[rest % grid[a].values.size()];
+              const size_t v = rest % grid[a].values.size();
               rest /= grid[a].values.size();
-              job.overrides[grid[a].key] = value;
+              job.overrides[grid[a].key] = grid[a].values[v];
+              job.overrideAt[grid[a].key] = grid[a].at[v];
             }
             rest = combo;
             std::vector<std::string> parts(grid.size());

@@ -43,6 +43,7 @@ struct Job {
   std::string scenePath;            // the scene file as opened: relative to the sweep file's folder
   std::vector<std::string> groups;  // every group that lists this configuration, sorted
   std::vector<std::string> plots;   // the plots it is a point of, sorted
+  std::map<std::string, SourceLocation> overrideAt;  // where the file sets each -D value
   std::string label;                // "map=1024 pcf=3": the group's case and grid values
   size_t order = 0;                 // where the file first lists it: the order of the Markdown table
 };
