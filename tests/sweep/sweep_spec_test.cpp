@@ -114,7 +114,7 @@ TEST_CASE("a configuration listed twice is one job in both groups", "[sweep]") {
   CHECK(zfail.plots == std::vector<std::string>{"p1", "p2"});
 }
 
-TEST_CASE("cases choose their methods and label the jobs; {scene} names a plot per scene", "[sweep]") {
+TEST_CASE("cases choose their methods and label the jobs, and {scene} names a plot per scene", "[sweep]") {
   const Spec spec = parseSpec(R"(groups:
   - name: g
     scenes: [scenes/room.yaml, scenes/pumpkins.yaml]
