@@ -8,6 +8,7 @@
 
 #include "cli/cli_common.h"
 #include "cli/version_info.h"
+#include "memory/allocator_tuning.h"
 #include "sweep/sweep_merge.h"
 #include "sweep/sweep_run.h"
 
@@ -108,6 +109,9 @@ int runSweep(const SweepArgs& args) {
     return kSuccess;
   }
 
+  // Jobs render frame after frame in one process, as `bench` does: freed buffers are kept for the
+  // next frame instead of being returned to the kernel and faulted in again.
+  keepFreedMemoryForReuse();
   sweep::RunOptions options;
   options.outDir = out;
   options.threads = args.threads >= 0 ? args.threads : spec.threads;
