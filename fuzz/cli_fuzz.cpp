@@ -1,7 +1,8 @@
 // libFuzzer target: the shadowref command line. Each line of the input is one argument; they are
 // parsed by the program's own parser (cli/command_line.h) and the chosen subcommand runs: render,
-// check, info and compare, with the validation of every option and value. `bench` and `explore`
-// are parsed but not run (one only times frames, the other serves until it is stopped).
+// check, info and compare, with the validation of every option and value. `bench`, `explore` and
+// `sweep` are parsed but not run (bench and sweep time frames, a sweep file's parser has its tests
+// in tests/sweep; explore serves until it is stopped).
 //
 // Bounds, so that each input is cheap and stays in the scratch folder fuzz/run.sh runs this in
 // (it holds minimal.yaml at 16x16, bad.yaml, a.png and b.exr, which inputs name by name):
@@ -60,7 +61,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   CommandArgs parsed;
   addCommands(app, parsed);
   if (parseCommandLine(app, int(argv.size()), argv.data())) return 0;
-  if (app.got_subcommand("bench") || app.got_subcommand("explore")) return 0;  // timing; a server
+  if (app.got_subcommand("bench") || app.got_subcommand("explore") || app.got_subcommand("sweep"))
+    return 0;  // timing; a server; timing
   // A frame sequence renders every frame of its range, and a movie runs ffmpeg: a valid range is
   // tried only up to 4 frames and without a movie (a bad range or movie name is still checked).
   const SequenceArgs& sequence = parsed.render.sequence;

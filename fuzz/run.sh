@@ -46,7 +46,7 @@ for h in build_info.h build_revision.h; do
 done
 sanitizers=fuzzer-no-link,address,undefined,float-cast-overflow
 flags=(-std=c++20 -g -O1 -fno-omit-frame-pointer -fsanitize=$sanitizers -fno-sanitize-recover=all
-       -ffp-contract=off -fno-fast-math -Wno-psabi -DGLM_ENABLE_EXPERIMENTAL -Isrc -I. -I"$out/gen"
+       -ffp-contract=off -fno-fast-math -Wno-psabi -DGLM_ENABLE_EXPERIMENTAL -Isrc -Isupport -I. -I"$out/gen"
        $(pkg-config --cflags OpenEXR)
        # The image reader (OpenImageIO) linked in, not loaded as a module: it is fuzzed too.
        -DSHADOWREF_IMAGE_READER_LINKED)
@@ -58,7 +58,7 @@ libs_of() {
     render_values) echo shadow scene pipeline ;;
     image_compare) echo image pipeline ;;
     differential) echo pipeline ;;
-    cli) echo cli explore oracle shadow scene image pipeline ;;
+    cli) echo cli explore sweep oracle views shadow scene image pipeline ;;
     *) echo "fuzz/run.sh: unknown target '$1' (targets: ${all_targets[*]})" >&2; return 1 ;;
   esac
 }

@@ -10,8 +10,8 @@
 #           OSMesa (the conformance tests), clang and its runtimes (fuzzing), pytest, nbclient,
 #           ipykernel and matplotlib (the Python tests and the notebook), Chromium and
 #           tests/browser's npm packages (the explorer's browser test), ffmpeg (run, not linked,
-#           by `render --frames --gif/--mp4`; the tests decode its movies with ffprobe);
-#           builds everything (scripts/test.sh)
+#           by `render --frames --gif/--mp4`; the tests decode its movies with ffprobe), GNU
+#           parallel (the sweep scale-out test); builds everything (scripts/test.sh)
 # Where the Python module was built, the python3 on the PATH is pointed at it (a .pth file in its
 # site folder naming BUILD_DIR/python), so that `python3 -c "import shadowref"` works from then on
 # and always loads the latest build.
@@ -31,7 +31,7 @@ render_packages=(
   libpng-dev libopenexr-dev nettle-dev libcpp-httplib-dev
   python3-dev pybind11-dev python3-numpy
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev chromium ffmpeg
+test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev chromium ffmpeg parallel
                python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in

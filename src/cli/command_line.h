@@ -10,6 +10,7 @@
 #include "cli/compare_command.h"
 #include "cli/explore_command.h"
 #include "cli/render_command.h"
+#include "cli/sweep_command.h"
 
 namespace CLI {
 class App;
@@ -23,6 +24,7 @@ struct CommandArgs {
   CompareArgs compare;
   BenchArgs bench;
   explore::ExploreOptions explore;
+  SweepArgs sweep;
 };
 
 // Adds every subcommand to `app`, its options writing into `args` (which must outlive `app`).

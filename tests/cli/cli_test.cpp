@@ -200,7 +200,7 @@ TEST_CASE("bench prints the median frame and each pass, at any thread count, and
 TEST_CASE("the --help text lists every subcommand and exits 0", "[cli]") {
   const CliRun r = runShadowref("--help");
   CHECK(r.status == 0);
-  for (const char* sub : {"render", "check", "info", "compare", "bench"}) CHECK(r.out.find(sub) != std::string::npos);
+  for (const char* sub : {"render", "check", "info", "compare", "bench", "sweep"}) CHECK(r.out.find(sub) != std::string::npos);
 }
 
 TEST_CASE("the pixel history (--pixel-history) prints the fragments of the watched pixel in draw order", "[cli]") {

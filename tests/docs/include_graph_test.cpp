@@ -34,6 +34,7 @@ const std::vector<IncludeRule> kRules = {
     {"src/api", {"exec/"}},
     {"src/oracle", {"exec/"}},
     {"src/explore", {"exec/"}},
+    {"src/sweep", {"exec/"}},
 };
 
 // The quoted includes of a file, with their line numbers.

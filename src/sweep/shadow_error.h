@@ -3,12 +3,21 @@
 // with the oracle's shadow ray (hard) or an area-light reference (soft).
 #pragma once
 
+#include <string_view>
 #include <vector>
 
 #include "scene/scene.h"
-#include "tradeoffs/experiments.h"
 
-namespace shadowref::bench {
+namespace shadowref::sweep {
+
+// What the renderer's shadow is compared with.
+enum class Reference {
+  HardLight,   // the light as a point: the oracle's shadow ray per pixel (src/oracle)
+  AreaSquare,  // the square [-s, s]^2 around the light in its horizontal plane (square_y's span)
+  AreaSphere,  // the sphere of radius s around the light (sphere14's points lie on it)
+};
+// "point", "square", "sphere": the names a sweep file writes.
+const char* name(Reference reference);
 
 struct ShadowError {
   long pixels = 0;         // (pixel, light) pairs compared
@@ -33,4 +42,4 @@ inline constexpr float kContributionThreshold = 0.02f;
 
 ShadowError measureShadowError(const Scene& scene, std::string_view method, const ErrorSettings& settings);
 
-}  // namespace shadowref::bench
+}  // namespace shadowref::sweep

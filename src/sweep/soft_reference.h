@@ -1,6 +1,6 @@
 // Ground truth for soft shadows: the fraction of an area light each pixel's surface point sees,
-// by shadow rays to many points spread evenly over the light (the issue's "high-sample
-// reference"). The surface points are the oracle's primary hits, so the reference and the hard
+// by shadow rays to many points spread evenly over the light (a high-sample
+// reference). The surface points are the oracle's primary hits, so the reference and the hard
 // oracle agree on what every pixel shows.
 #pragma once
 
@@ -10,9 +10,9 @@
 
 #include "scene/scene.h"
 #include "oracle/oracle.h"
-#include "tradeoffs/experiments.h"
+#include "sweep/shadow_error.h"
 
-namespace shadowref::bench {
+namespace shadowref::sweep {
 
 // `samples` points on the light: AreaSquare, a square grid of cell centres over [-s, s]^2 in the
 // horizontal plane through the light (square_y's lights span it); AreaSphere, a Fibonacci spiral
@@ -25,4 +25,4 @@ std::vector<glm::dvec3> areaLightSamples(Reference shape, const glm::dvec3& cent
 std::vector<float> areaLightVisibility(const Scene& scene, const Light& light, const std::vector<glm::dvec3>& samples,
                                        const oracle::OracleImage& primary, int threads);
 
-}  // namespace shadowref::bench
+}  // namespace shadowref::sweep

@@ -1,4 +1,4 @@
-#include "tradeoffs/shadow_error.h"
+#include "sweep/shadow_error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,18 @@
 #include "shadow/frame_renderer.h"
 #include "shadow/soft_lights.h"
 #include "oracle/oracle.h"
-#include "tradeoffs/soft_reference.h"
+#include "sweep/soft_reference.h"
 
-namespace shadowref::bench {
+namespace shadowref::sweep {
+
+const char* name(Reference reference) {
+  switch (reference) {
+    case Reference::HardLight: return "point";
+    case Reference::AreaSquare: return "square";
+    case Reference::AreaSphere: return "sphere";
+  }
+  return "?";
+}
 
 namespace {
 
@@ -161,4 +170,4 @@ ShadowError measureShadowError(const Scene& scene, std::string_view method, cons
   return e;
 }
 
-}  // namespace shadowref::bench
+}  // namespace shadowref::sweep

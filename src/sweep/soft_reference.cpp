@@ -1,4 +1,4 @@
-#include "tradeoffs/soft_reference.h"
+#include "sweep/soft_reference.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "oracle/triangle_bvh.h"
 #include "oracle/world_volumes.h"
 
-namespace shadowref::bench {
+namespace shadowref::sweep {
 
 namespace {
 
@@ -103,4 +103,4 @@ std::vector<float> areaLightVisibility(const Scene& scene, const Light& light, c
   return visibility;
 }
 
-}  // namespace shadowref::bench
+}  // namespace shadowref::sweep
