@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "image/atomic_write.h"
+#include "scene/animation.h"
 #include "scene/scene_loader.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/soft_lights.h"
@@ -36,9 +37,12 @@ double median(std::vector<double> v) {
   return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// The scene as it stands at `frame`. A scene without animation is the same at every frame: the
-// still scene is frame 0 and every other.
-const Scene& sceneAtFrame(const Scene& scene, int /*frame*/) { return scene; }
+// The scene as it stands at `frame` (t = frame / the animation's fps, as render --frames). A scene
+// without animation is the same at every frame.
+Scene sceneAtFrame(const Scene& scene, int frame) {
+  if (!scene.animation) return scene;
+  return sceneAt(scene, double(frame) / scene.animation->fps);
+}
 
 Json timeFrames(const Scene& scene, const Job& job, const RunOptions& options) {
   FrameOptions frame;
@@ -118,7 +122,7 @@ std::string runJob(const Job& job, const RunOptions& options) {
     }
     throw;
   }
-  const Scene& scene = sceneAtFrame(loaded, job.frame);
+  const Scene scene = sceneAtFrame(loaded, job.frame);
   const ShadowTechnique* technique = findTechnique(job.method);
   if (!technique) throw std::runtime_error(unknownTechniqueMessage(job.method));
 
