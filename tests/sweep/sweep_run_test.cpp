@@ -8,6 +8,11 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
+#include "scene/animation.h"
+#include "scene/scene_loader.h"
+#include "shadow/frame_renderer.h"
 #include "support/cli_run.h"
 #include "sweep/sweep_merge.h"
 #include "sweep/sweep_run.h"
@@ -152,4 +157,32 @@ TEST_CASE("merging gives the same CSV bytes every time, rows in id order, or nam
   // Untimed: no plot data, and a table with a row per job.
   const std::string table = testing::slurp(dir / "table.md");
   for (const Job& j : spec.jobs) CHECK(table.find("`" + j.id + "`") != std::string::npos);
+}
+
+TEST_CASE("a job's frame of an animated scene is that scene at frame / fps", "[sweep]") {
+  const Spec spec = parseSpec(R"(record: [counts]
+set: {image.width: 40, image.height: 32}
+groups:
+  - {name: circle, scenes: [scenes/anim_room_circle.yaml], methods: [zfail], frames: [0, 6]}
+)",
+                              "t.sweep.yaml");
+  REQUIRE(spec.jobs.size() == 2);
+  RunOptions options;
+  options.timing = false;
+  LoadOptions load;
+  load.overrides = {"image.width=40", "image.height=32"};
+  const Scene loaded = loadScene("scenes/anim_room_circle.yaml", load);
+  REQUIRE(loaded.animation);
+  std::set<std::string> counts;
+  for (const Job& job : spec.jobs) {
+    INFO("frame " << job.frame);
+    const nlohmann::json record = nlohmann::json::parse(runJob(job, options));
+    FrameOptions frame;
+    frame.method = "zfail";
+    const RasterStats expected = renderFrame(sceneAt(loaded, double(job.frame) / loaded.animation->fps), frame).stats;
+    CHECK(record["counts"]["fragments"] == expected.fragments);
+    CHECK(record["counts"]["stencil_writes"] == expected.stencilWrites);
+    counts.insert(record["counts"].dump());
+  }
+  CHECK(counts.size() == 2);  // the light has moved between frames 0 and 6
 }
