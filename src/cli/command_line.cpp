@@ -18,6 +18,7 @@ void addCommands(CLI::App& app, CommandArgs& args) {
   addInfoCommand(app, args.info);
   addCompareCommand(app, args.compare);
   addBenchCommand(app, args.bench);
+  addReplayCommand(app, args.replay);
   app.footer("Exit status: 0 success, 1 a failed render or comparison, 2 bad usage or bad input;\n"
              "130 / 143 after SIGINT / SIGTERM, which remove any half-written temporary file.");
 }
@@ -45,6 +46,7 @@ int runCommand(const CLI::App& app, const CommandArgs& args) {
   if (app.got_subcommand("info")) return runInfo(args.info);
   if (app.got_subcommand("compare")) return runCompare(args.compare);
   if (app.got_subcommand("bench")) return runBench(args.bench);
+  if (app.got_subcommand("replay")) return runReplay(args.replay);
   return kBadInput;
 }
 

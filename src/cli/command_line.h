@@ -9,6 +9,7 @@
 #include "cli/cli_common.h"
 #include "cli/compare_command.h"
 #include "cli/render_command.h"
+#include "cli/replay_command.h"
 
 namespace CLI {
 class App;
@@ -21,6 +22,7 @@ struct CommandArgs {
   SceneArgs check, info;
   CompareArgs compare;
   BenchArgs bench;
+  ReplayArgs replay;
 };
 
 // Adds every subcommand to `app`, its options writing into `args` (which must outlive `app`).

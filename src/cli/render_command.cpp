@@ -17,6 +17,7 @@
 #include "shadow/frame_renderer.h"
 #include "shadow/soft_lights.h"
 #include "shadow/technique_registry.h"
+#include "trace/trace_recorder.h"
 
 namespace shadowref::cli {
 
@@ -152,6 +153,9 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
       ->check(CLI::IsMember({"volumes", "volumes-overlay"}));
   render->add_option("--pixel-history", args.pixelHistory,
                      "x,y: print every fragment that touched that pixel (rendered by the reference pipeline)");
+  render->add_option("--capture", args.capture,
+                     "Write the frame's commands (every clear, draw, accumulation, end of pass) and final buffers to "
+                     "this trace file, for `shadowref replay` (docs/trace-format.md)");
 }
 
 int runRender(const RenderArgs& args) {
@@ -186,6 +190,16 @@ int runRender(const RenderArgs& args) {
     }
   }
 
+  if (!args.capture.empty()) {
+    if (!args.pixelHistory.empty()) {
+      std::cerr << "--capture: cannot be combined with --pixel-history\n";
+      return kBadInput;
+    }
+    if (const std::string problem = outputFolderProblem(args.capture); !problem.empty()) {
+      std::cerr << args.capture << ": " << problem << '\n';
+      return kBadInput;
+    }
+  }
   const std::vector<Instance> instances = scene->instances();
   PixelHistoryPrinter history(instances);
   if (!args.pixelHistory.empty()) {
@@ -291,7 +305,21 @@ int runRender(const RenderArgs& args) {
       }
       passFiles.push_back(path);
     };
+    // --capture: the frame's pipelines record every command (src/trace/trace_recorder.h).
+    std::unique_ptr<PipelineMaker> innerMaker, recordingMaker;
+    std::unique_ptr<trace::TraceRecorder> recorder;
+    if (!args.capture.empty()) {
+      innerMaker = makePipelineMaker(options.pipeline, options.threads);
+      recorder = std::make_unique<trace::TraceRecorder>();
+      recordingMaker = recorder->wrap(*innerMaker);
+      options.pipelines = recordingMaker.get();
+    }
     const FrameResult frame = renderFrame(*scene, options);
+    if (recorder) {
+      ensureParentDirectory(args.capture, &madeFolders);
+      recorder->write(args.capture);
+      if (!args.quiet) std::cerr << "wrote " << args.capture << '\n';
+    }
     // The EXR's ZIP blocks compress on as many threads as a fast frame renders on (same bytes).
     if (anyExr || options.keepShadowMaps) setImageWriterThreads(pipelineThreads(PipelineKind::Fast, options.threads));
     if (!args.quiet)

@@ -24,6 +24,7 @@ struct RenderArgs {
   std::string dumpRegion;            // "x,y,w,h": stencil counts of that region as a grid
   std::string view;                  // volumes, volumes-overlay
   std::string pixelHistory;          // "x,y"
+  std::string capture;               // trace file of the frame's commands (src/trace)
 };
 
 void addRenderCommand(CLI::App& app, RenderArgs& args);
