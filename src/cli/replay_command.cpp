@@ -28,8 +28,8 @@ void addReplayCommand(CLI::App& app, ReplayArgs& args) {
   replay->add_option("--threads", args.threads, "Threads of the fast pipeline (0: one per CPU)")
       ->check(wholeNumberIn(0, 256));
   replay->add_option("--depth-tolerance", args.depthTolerance,
-                     "Against a real GL: 24-bit depth codes that may differ off the edges (default 2, "
-                     "docs/conformance.md)")
+                     "Against a real GL: 24-bit depth codes that may differ off the edges (default 2), plus the "
+                     "largest polygon offset units of the framebuffer's draws (Mesa doubles them, docs/conformance.md)")
       ->check(CLI::Range(0u, 1u << 24));
 }
 
@@ -70,7 +70,7 @@ int runReplay(const ReplayArgs& args) {
     for (uint32_t i = 0; i < tolerances.size(); ++i) {
       tolerances[i].exact = !gl;
       tolerances[i].colorTolerance255 = fixedFunctionColorTolerance(t, i);
-      tolerances[i].depthTolerance = args.depthTolerance;
+      tolerances[i].depthTolerance = fixedFunctionDepthTolerance(t, i, args.depthTolerance);
     }
     Comparison c = compareBuffers(t, expected, actual.buffers, tolerances);
     c.expectedName = expectedName;

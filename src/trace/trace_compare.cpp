@@ -40,6 +40,14 @@ double fixedFunctionColorTolerance(const Trace& trace, uint32_t target) {
   return tolerance + (blendedInPass ? 1.0 : 0.0);
 }
 
+uint32_t fixedFunctionDepthTolerance(const Trace& trace, uint32_t target, uint32_t base) {
+  double units = 0.0;
+  for (const Command& c : trace.commands)
+    if (const auto* d = std::get_if<DrawCommand>(&c.what); d && c.target == target && d->state.polygonOffset.enabled)
+      units = std::max(units, std::fabs(d->state.polygonOffset.units));
+  return base + uint32_t(std::min(std::ceil(units), 16777215.0));
+}
+
 namespace {
 
 EdgeMask edgesOf(const Trace& trace, uint32_t target) {

@@ -50,6 +50,11 @@ struct Comparison {
 // for every pass of blended draws and every accumulation operation (each rounds what is stored).
 double fixedFunctionColorTolerance(const Trace& trace, uint32_t target);
 
+// The depth tolerance of a target against a GL: `base` codes plus the largest |units| of its
+// polygon-offset draws — Mesa moves depth by 2 codes per unit where shadowref moves it by 1
+// (r = 1/(2^24 - 1), docs/conformance.md §Polygon offset).
+uint32_t fixedFunctionDepthTolerance(const Trace& trace, uint32_t target, uint32_t base);
+
 // Compares expected[t] with actual[t] for every target both have.
 Comparison compareBuffers(const Trace& trace, const std::vector<const Buffers*>& expected,
                           const std::vector<Buffers>& actual, const std::vector<Tolerances>& tolerances);

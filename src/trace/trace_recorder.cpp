@@ -1,5 +1,6 @@
 #include "trace/trace_recorder.h"
 
+#include <optional>
 #include <stdexcept>
 
 #include "gl/shader_description.h"
@@ -15,12 +16,13 @@ class RecordingPipeline final : public Pipeline {
   RecordingPipeline(std::unique_ptr<Pipeline> inner, TraceRecorder& recorder, uint32_t target)
       : inner_(std::move(inner)), recorder_(recorder), target_(target) {}
   ~RecordingPipeline() override {
-    // The buffers as the frame left them: the pass ends first, as the inner pipeline's
-    // destruction would end it.
-    // A destructor must not throw: a frame that failed (the exception is on its way) records no
-    // result, and its trace is not written.
+    // The buffers as the last command left them: taken when the framebuffer was handed out after
+    // it (whoever takes it may move a buffer out, as a shadow map's depth becomes its texture),
+    // else now. A destructor must not throw: a frame that failed (the exception is on its way)
+    // records no result, and its trace is not written.
     try {
-      recorder_.result(target_, inner_->framebuffer());
+      if (!snapshot_ || dirty_) snapshot_ = buffersOf(inner_->framebuffer());
+      recorder_.result(target_, *snapshot_);
     } catch (...) {
     }
   }
@@ -28,14 +30,17 @@ class RecordingPipeline final : public Pipeline {
   PipelineKind kind() const override { return inner_->kind(); }
   int threads() const override { return inner_->threads(); }
   void clear(const ClearRequest& request) override {
+    dirty_ = true;
     recorder_.clear(target_, request);
     inner_->clear(request);
   }
   void draw(const DrawCall& call) override {
+    dirty_ = true;
     recorder_.draw(target_, call);
     inner_->draw(call);
   }
   void accumulate(const RenderState& state, AccumOp op, float value) override {
+    dirty_ = true;
     recorder_.accumulate(target_, state, op, value);
     inner_->accumulate(state, op, value);
   }
@@ -45,7 +50,10 @@ class RecordingPipeline final : public Pipeline {
   }
   Framebuffer& framebuffer() override {
     recorder_.endPass(target_);
-    return inner_->framebuffer();
+    Framebuffer& fb = inner_->framebuffer();
+    if (dirty_) snapshot_ = buffersOf(fb);
+    dirty_ = false;
+    return fb;
   }
   const RasterStats& stats() const override { return inner_->stats(); }
   void resetStats() override { inner_->resetStats(); }
@@ -62,6 +70,8 @@ class RecordingPipeline final : public Pipeline {
   std::unique_ptr<Pipeline> inner_;
   TraceRecorder& recorder_;
   uint32_t target_;
+  std::optional<Buffers> snapshot_;  // the buffers when last handed out
+  bool dirty_ = false;               // a command since then
 };
 
 class RecordingMaker final : public PipelineMaker {
@@ -197,10 +207,10 @@ void TraceRecorder::endPass(uint32_t target) {
   shaders_.clear();
 }
 
-void TraceRecorder::result(uint32_t target, const Framebuffer& fb) {
+void TraceRecorder::result(uint32_t target, const Buffers& buffers) {
   Encoder e(bytes_);
   const size_t r = e.beginRecord(RecordType::Result);
-  e.buffers(target, buffersOf(fb));
+  e.buffers(target, buffers);
   e.endRecord(r);
   shaders_.clear();
 }

@@ -1,6 +1,6 @@
 // Capture (`shadowref render --capture`): a decorator around the frame's pipelines that encodes
 // every command at the Pipeline boundary (gl/pipeline.h) before passing it on, and when a
-// pipeline goes, the buffers its framebuffer holds. The trace is held in memory and written whole
+// pipeline goes, the buffers its framebuffer held after its last command. The trace is held in memory and written whole
 // (atomically) by finish().
 #pragma once
 
@@ -12,6 +12,7 @@
 
 #include "gl/depth_compare_sampler.h"
 #include "gl/pipeline.h"
+#include "trace/trace.h"
 
 namespace shadowref::trace {
 
@@ -33,7 +34,7 @@ class TraceRecorder {
   void draw(uint32_t target, const DrawCall& call);
   void accumulate(uint32_t target, const RenderState& state, AccumOp op, float value);
   void endPass(uint32_t target);
-  void result(uint32_t target, const Framebuffer& fb);
+  void result(uint32_t target, const Buffers& buffers);
 
  private:
   uint32_t shaderId(const FragmentShader& shader);
