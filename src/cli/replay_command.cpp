@@ -45,6 +45,12 @@ int runReplay(const ReplayArgs& args) {
   const ReplayTarget on = *parseReplayTarget(args.on);
   const std::optional<ReplayTarget> against =
       args.against == "trace" ? (on.gl ? parseReplayTarget("reference") : std::nullopt) : parseReplayTarget(args.against);
+  if (on.gl && against && against->gl && on.driver != against->driver) {
+    // Mesa picks its driver once per process, at the first context.
+    std::cerr << "replay: --on " << on.name << " and --against " << against->name
+              << " need two processes (Mesa's driver is chosen once per process); compare each with the reference\n";
+    return kBadInput;
+  }
   if ((on.gl || (against && against->gl)) && !osmesaAvailable()) {
     std::cerr << "replay: this build has no OSMesa (install libosmesa6-dev and rebuild)\n";
     return kBadInput;
