@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "osmesa/gl_state.h"
+#include "trace/osmesa/gl_state.h"
 #include "osmesa/osmesa_harness.h"
 #include "gl/lighting.h"
 #include "gl/render_state.h"

@@ -9,6 +9,7 @@
 #   render_values  the numbers of a fixed valid scene, rendered at 16x16 with every shadow method
 #   differential   a command stream, rendered by the reference pipeline and the fast executor at
 #                  one and three threads, stopping at the first byte that differs
+#   trace          a trace file (render --capture), parsed, replayed on the reference and compared
 # Each target is one file fuzz/<target>_fuzz.cpp, linked against static libraries built here with
 # clang++-14 straight from src/ (not through the main CMake): objects are rebuilt only when their
 # source or a header is newer, shared by all targets, two compiles at a time (FUZZ_JOBS).
@@ -23,7 +24,7 @@ cd "$(dirname "$0")/.."
 root=$PWD
 seconds=${1:-60}
 shift || true
-all_targets=(scene_loader obj_import gltf_import cli image_compare render_values differential)
+all_targets=(scene_loader obj_import gltf_import cli image_compare render_values differential trace)
 targets=()
 fuzz_flags=()
 for arg in "$@"; do
@@ -58,7 +59,8 @@ libs_of() {
     render_values) echo shadow scene pipeline ;;
     image_compare) echo image pipeline ;;
     differential) echo pipeline ;;
-    cli) echo cli explore sweep oracle views shadow scene image pipeline ;;
+    trace) echo trace shadow scene image pipeline ;;
+    cli) echo cli explore sweep trace oracle views shadow scene image pipeline ;;
     *) echo "fuzz/run.sh: unknown target '$1' (targets: ${all_targets[*]})" >&2; return 1 ;;
   esac
 }
@@ -118,7 +120,7 @@ for t in "${targets[@]}"; do
   libs=()
   for l in $(libs_of "$t"); do libs+=("$out/lib/lib$l.a"); done
   extra=(-lyaml-cpp)
-  case $t in image_compare | cli) extra+=($(pkg-config --libs OpenImageIO libpng OpenEXR nettle)) ;; esac
+  case $t in image_compare | cli | trace) extra+=($(pkg-config --libs OpenImageIO libpng OpenEXR nettle)) ;; esac
   [ "$t" = cli ] && extra+=($(pkg-config --libs cpp-httplib))
   "$CXX" -fsanitize=fuzzer,$sanitizers "$out/obj/fuzz_${t}_fuzz.o" "${libs[@]}" "${extra[@]}" -lpthread -o "$out/${t}_fuzz"
 done
@@ -215,6 +217,15 @@ r = random.Random(7)
 for i in range(16):
     open(sys.argv[1] + '/random%02d' % i, 'wb').write(bytes(r.randrange(256) for _ in range(r.randrange(64, 1024))))
 " "$out/seeds/differential"
+}
+
+seeds_trace() {
+  # A larger trace (~100 KB): the minimal scene's z-fail frame at 24x18.
+  if [ -x build/shadowref ]; then
+    sed -e 's/width: 640/width: 24/' -e 's/height: 480/height: 18/' scenes/minimal.yaml > "$out/minimal-24.yaml"
+    build/shadowref render "$out/minimal-24.yaml" --method zfail -o "$out/minimal-24.png" \
+      --capture "$out/seeds/trace/minimal-zfail-24x18.srtrace" --quiet || true
+  fi
 }
 
 # The scratch folder each target writes its side files into, and a few files the command line

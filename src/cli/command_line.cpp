@@ -20,6 +20,7 @@ void addCommands(CLI::App& app, CommandArgs& args) {
   addBenchCommand(app, args.bench);
   addExploreCommand(app, args.explore);
   addSweepCommand(app, args.sweep);
+  addReplayCommand(app, args.replay);
   app.footer("Exit status: 0 success, 1 a failed render, 2 bad usage or bad input; compare has idiff's:\n"
              "0 PASS, 1 WARNING, 2 FAILURE, 3 sizes or channels differ, 4 bad input;\n"
              "130 / 143 after SIGINT / SIGTERM, which remove any half-written temporary file\n"
@@ -51,6 +52,7 @@ int runCommand(const CLI::App& app, const CommandArgs& args) {
   if (app.got_subcommand("bench")) return runBench(args.bench);
   if (app.got_subcommand("explore")) return runExplore(args.explore);
   if (app.got_subcommand("sweep")) return runSweep(args.sweep);
+  if (app.got_subcommand("replay")) return runReplay(args.replay);
   return kBadInput;
 }
 

@@ -11,6 +11,7 @@
 #include "cli/explore_command.h"
 #include "cli/render_command.h"
 #include "cli/sweep_command.h"
+#include "cli/replay_command.h"
 
 namespace CLI {
 class App;
@@ -25,6 +26,7 @@ struct CommandArgs {
   BenchArgs bench;
   explore::ExploreOptions explore;
   SweepArgs sweep;
+  ReplayArgs replay;
 };
 
 // Adds every subcommand to `app`, its options writing into `args` (which must outlive `app`).

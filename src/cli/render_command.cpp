@@ -25,6 +25,7 @@
 #include "views/pixel_history.h"
 #include "views/stencil_counts_view.h"
 #include "views/volume_colours.h"
+#include "trace/trace_recorder.h"
 
 namespace shadowref::cli {
 
@@ -152,6 +153,9 @@ void addRenderCommand(CLI::App& app, RenderArgs& args) {
                      "x,y: print every fragment that touched that pixel by pass and light, the clears, and each "
                      "shadow-map lookup (always rendered by the reference pipeline)");
   addSequenceOptions(*render, args.sequence);
+  render->add_option("--capture", args.capture,
+                     "Write the frame's commands (every clear, draw, accumulation, end of pass) and final buffers to "
+                     "this trace file, for `shadowref replay` (docs/trace-format.md)");
 }
 
 int runRender(const RenderArgs& args) {
@@ -206,6 +210,16 @@ int renderScene(const RenderArgs& args, const Scene& sceneValue, const FrameHook
     }
   }
 
+  if (!args.capture.empty()) {
+    if (!args.pixelHistory.empty()) {
+      std::cerr << "--capture: cannot be combined with --pixel-history\n";
+      return kBadInput;
+    }
+    if (const std::string problem = outputFolderProblem(args.capture); !problem.empty()) {
+      std::cerr << args.capture << ": " << problem << '\n';
+      return kBadInput;
+    }
+  }
   const std::vector<Instance> instances = scene->instances();
   std::optional<views::PixelHistory> history;
   if (!args.pixelHistory.empty()) {
@@ -309,8 +323,22 @@ int renderScene(const RenderArgs& args, const Scene& sceneValue, const FrameHook
       }
       passFiles.push_back(path);
     };
+    // --capture: the frame's pipelines record every command (src/trace/trace_recorder.h).
+    std::unique_ptr<PipelineMaker> innerMaker, recordingMaker;
+    std::unique_ptr<trace::TraceRecorder> recorder;
+    if (!args.capture.empty()) {
+      innerMaker = makePipelineMaker(options.pipeline, options.threads);
+      recorder = std::make_unique<trace::TraceRecorder>();
+      recordingMaker = recorder->wrap(*innerMaker);
+      options.pipelines = recordingMaker.get();
+    }
     if (history) history->attach(options);  // after onPass: its own is called first
     const FrameResult frame = renderFrame(*scene, options);
+    if (recorder) {
+      ensureParentDirectory(args.capture, &madeFolders);
+      recorder->write(args.capture);
+      if (!args.quiet) std::cerr << "wrote " << args.capture << '\n';
+    }
     // The EXR's ZIP blocks compress on as many threads as a fast frame renders on (same bytes).
     if (anyExr || options.keepShadowMaps) setImageWriterThreads(pipelineThreads(PipelineKind::Fast, options.threads));
     setExrCompression(*exrCompressionNamed(args.exrCompression));

@@ -32,6 +32,7 @@ struct RenderArgs {
   bool oracle = false;               // per light: the ray-traced visibility and an error map
   std::string stencilView;           // "", unsigned, signed: how stencil bytes read ("": unsigned)
   SequenceArgs sequence;             // --frames, --fps, --gif, --mp4, --movie, --contact-sheet
+  std::string capture;               // trace file of the frame's commands (src/trace)
 };
 
 void addRenderCommand(CLI::App& app, RenderArgs& args);

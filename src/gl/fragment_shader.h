@@ -10,6 +10,8 @@
 
 namespace shadowref {
 
+struct ShaderDescription;  // gl/shader_description.h
+
 struct FragmentInput {
   int x = 0, y = 0;          // pixel; its centre is (x + 0.5, y + 0.5)
   double depth = 0.0;        // window depth after offset and clamping
@@ -41,6 +43,9 @@ class FragmentShader {
   // shade() for every fragment of the batch; a shader overrides it to work on all at once. It
   // must give the bits shade() gives.
   virtual void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const;
+  // The shader as data (gl/shader_description.h), for a capture of the draws (src/trace); false
+  // when it cannot be given as such.
+  virtual bool describe(ShaderDescription& out) const { return false; }
 };
 
 // Outputs the first four varyings as RGBA: flat or Gouraud colour, and the conformance tests.
@@ -51,6 +56,7 @@ class ColorVaryingShader final : public FragmentShader {
     return {in.varyings[0], in.varyings[1], in.varyings[2], in.varyings[3]};
   }
   void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override;
+  bool describe(ShaderDescription& out) const override;
 };
 
 // One colour for every fragment.
@@ -60,6 +66,7 @@ class ConstantColorShader final : public FragmentShader {
   int varyingCount() const override { return 0; }
   glm::dvec4 shade(const FragmentInput&) const override { return color_; }
   const glm::dvec4* constantColor() const override { return &color_; }
+  bool describe(ShaderDescription& out) const override;
 
  private:
   glm::dvec4 color_;

@@ -78,7 +78,7 @@ glm::dvec3 shadePoint(const LightingSetup& setup, const glm::dvec3& p, const glm
 }
 
 PerPixelLightingShader::PerPixelLightingShader(const LightingSetup& setup)
-    : base_(setup.includeAmbient ? ambientTerm(setup.material, setup.globalAmbient) : glm::dvec3(0.0)), eye_(setup.eye) {
+    : setup_(setup), base_(setup.includeAmbient ? ambientTerm(setup.material, setup.globalAmbient) : glm::dvec3(0.0)), eye_(setup.eye) {
   for (const PhongLight& light : setup.lights) terms_.push_back(lightTerms(light, setup.material));
 }
 

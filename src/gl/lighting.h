@@ -89,9 +89,11 @@ class PerPixelLightingShader final : public FragmentShader {
   int varyingCount() const override { return 6; }
   glm::dvec4 shade(const FragmentInput& in) const override;
   void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override;
+  bool describe(ShaderDescription& out) const override;
 
  private:
   glm::dvec3 litColor(const FragmentInput& in) const;
+  LightingSetup setup_;  // what it was made from, for describe()
   glm::dvec3 base_;  // the ambient term, or 0
   std::vector<LightTerms> terms_;
   glm::dvec3 eye_;
@@ -108,6 +110,7 @@ class GouraudShader final : public FragmentShader {
     return {in.varyings[kVaryingColor], in.varyings[kVaryingColor + 1], in.varyings[kVaryingColor + 2], 1.0};
   }
   void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override;
+  bool describe(ShaderDescription& out) const override;
 };
 
 glm::dvec3 gouraudVertexColor(const LightingSetup& setup, const glm::dvec3& p, const glm::dvec3& n);

@@ -7,11 +7,14 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "gl/accumulation.h"
 #include "gl/clear.h"
 #include "gl/color_columns.h"
 #include "gl/lighting.h"
+#include "gl/shader_description.h"
 #include "scene/scene_sections.h"
 #include "shadow/draw_tag.h"
 #include "shadow/light_shadow.h"
@@ -26,6 +29,25 @@ namespace shadowref {
 
 namespace {
 
+ShadowMapDescription describeLookup(const ShadowLookup& l) {
+  return {l.textureMatrix, l.sampler.texture, l.sampler.func, l.sampler.failValue, l.pcf, l.constantBias, l.outsideLit};
+}
+
+LightShadowDescription describeLightShadow(const LightShadow& s) {
+  LightShadowDescription d;
+  d.cube = s.cube;
+  if (s.cube) {
+    d.lightPosition = s.cubeLookup.lightPosition;
+    for (const ShadowLookup& face : s.cubeLookup.faces) d.maps.push_back(describeLookup(face));
+  } else {
+    d.maps.push_back(describeLookup(s.lookup));
+  }
+  d.trapezoidal = s.trapezoidal;
+  d.lightView = s.views[0].view;
+  d.lightProjection = s.views[0].projection;
+  return d;
+}
+
 // The camera pass's shader: GL_MODULATE of the lit colour by the compare result
 // ([Hempe 2004, §5.1.2]), per light: colour = sum over lights of (ambient / n + diffuse_i +
 // specular_i) * factor_i. With one light, as in the documents, that is (ambient + light) * (1 or
@@ -33,7 +55,7 @@ namespace {
 class ShadowMappedShader final : public FragmentShader {
  public:
   ShadowMappedShader(const LightingSetup& setup, std::vector<const LightShadow*> shadows)
-      : ambient_(ambientTerm(setup.material, setup.globalAmbient)), eye_(setup.eye), shadows_(std::move(shadows)) {
+      : setup_(setup), ambient_(ambientTerm(setup.material, setup.globalAmbient)), eye_(setup.eye), shadows_(std::move(shadows)) {
     for (const PhongLight& light : setup.lights) {
       inRange_.push_back(light.position != glm::dvec4(0.0));
       terms_.push_back(lightTerms(light, setup.material));
@@ -41,6 +63,14 @@ class ShadowMappedShader final : public FragmentShader {
   }
 
   int varyingCount() const override { return 6; }
+
+  bool describe(ShaderDescription& out) const override {
+    out = {};
+    out.kind = ShaderKind::ShadowMapped;
+    out.setup = setup_;
+    for (const LightShadow* s : shadows_) out.shadows.push_back(describeLightShadow(*s));
+    return true;
+  }
 
   void shadeBatch(const FragmentBatch& batch, glm::dvec4* out) const override {
     if (shadows_.empty()) {
@@ -82,6 +112,7 @@ class ShadowMappedShader final : public FragmentShader {
   }
 
  private:
+  LightingSetup setup_;  // what it was made from, for describe()
   glm::dvec3 ambient_, eye_;
   std::vector<LightTerms> terms_;
   std::vector<bool> inRange_;  // a light out of range is given as PhongLight{0}: no contribution
@@ -100,6 +131,13 @@ class ShadowMappedGouraudShader final : public FragmentShader {
   explicit ShadowMappedGouraudShader(std::vector<const LightShadow*> shadows) : shadows_(std::move(shadows)) {}
 
   int varyingCount() const override { return kFirstColor + 3 * int(shadows_.size()); }
+
+  bool describe(ShaderDescription& out) const override {
+    out = {};
+    out.kind = ShaderKind::ShadowMappedGouraud;
+    for (const LightShadow* s : shadows_) out.shadows.push_back(describeLightShadow(*s));
+    return true;
+  }
 
   // shade()'s sum in columns, one channel at a time over the batch (the loops vectorise): the
   // same operations per fragment, in the same order.
@@ -271,6 +309,17 @@ void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
 }
 
 }  // namespace
+
+std::unique_ptr<FragmentShader> makeShadowMappedShader(const LightingSetup& setup, std::vector<const LightShadow*> shadows) {
+  return std::make_unique<ShadowMappedShader>(setup, std::move(shadows));
+}
+
+std::unique_ptr<FragmentShader> makeShadowMappedGouraudShader(std::vector<const LightShadow*> shadows) {
+  if (shadows.size() > size_t(ShadowMappedGouraudShader::kMaxLights))
+    throw std::invalid_argument("a shadow-mapped Gouraud shader takes at most " +
+                                std::to_string(ShadowMappedGouraudShader::kMaxLights) + " lights");
+  return std::make_unique<ShadowMappedGouraudShader>(std::move(shadows));
+}
 
 void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions& options, FrameResult& result,
                       Pipeline& pipeline) {

@@ -11,6 +11,10 @@
 //      square area light, each ACCUMed with weight 1/n, then RETURN.
 #pragma once
 
+#include <memory>
+#include <vector>
+
+#include "gl/lighting.h"
 #include "gl/pipeline.h"
 #include "scene/scene.h"
 #include "shadow/frame_renderer.h"
@@ -22,5 +26,12 @@ enum class ShadowMapKind : uint8_t { Standard, Trapezoidal };
 
 void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions& options, FrameResult& result,
                       Pipeline& pipeline);
+
+struct LightShadow;
+// The camera pass's shaders (step 2), for a replay of a captured frame (src/trace): lit per pixel
+// by `setup` and modulated by each light's shadow test, or for a Gouraud material the per-vertex
+// colours of each light modulated so (at most 4 lights: std::invalid_argument beyond).
+std::unique_ptr<FragmentShader> makeShadowMappedShader(const LightingSetup& setup, std::vector<const LightShadow*> shadows);
+std::unique_ptr<FragmentShader> makeShadowMappedGouraudShader(std::vector<const LightShadow*> shadows);
 
 }  // namespace shadowref

@@ -1,5 +1,5 @@
 #include "osmesa/osmesa_harness.h"
-#include "osmesa/gl_state.h"
+#include "trace/osmesa/gl_state.h"
 
 #include <GL/osmesa.h>
 

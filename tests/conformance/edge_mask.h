@@ -1,7 +1,6 @@
-// The pixels near a primitive edge, where GL leaves the implementation freedom: which of two
-// triangles owns a pixel centre exactly on (or within rounding of) their shared edge, and how
-// clipped vertices are rounded. Differences there are explained by the fill rule, not by the
-// per-fragment operations the comparison is after (docs/conformance.md).
+// The pixels near a primitive edge of a conformance scenario, where GL leaves the implementation
+// freedom (fill-rule ties, rounding of clipped vertices): the product's classification
+// (src/trace/edge_mask.h), which `shadowref replay` applies to captured frames.
 #pragma once
 
 #include <vector>
@@ -11,8 +10,7 @@
 namespace shadowref::conformance {
 
 // One flag per pixel (bottom row first): true when the pixel centre lies within `distance`
-// pixels of an edge of any triangle drawn in the scenario, after clipping it in double precision
-// against the near and far planes (unless depth clamp) and projecting it with its viewport.
+// pixels of an edge of any triangle drawn in the scenario.
 std::vector<bool> edgeMask(const Scenario& scenario, double distance = 1.0);
 
 }  // namespace shadowref::conformance

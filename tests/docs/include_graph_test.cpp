@@ -21,9 +21,9 @@ struct IncludeRule {
   std::vector<const char*> forbidden;    // include paths starting with these are not allowed there
 };
 
-// The algorithms, the command, the library interface, the explorer, the scene model and the image files see the
-// pipelines only through the interface in src/gl (gl/pipeline.h): the executor's machinery
-// (threads, bands, kept setups) must not leak into them.
+// The algorithms, the command, the library interface, the explorer, the scene model, the image
+// files and capture and replay see the pipelines only through the interface in src/gl
+// (gl/pipeline.h): the executor's machinery (threads, bands, kept setups) must not leak into them.
 const std::vector<IncludeRule> kRules = {
     {"src/gl", {"exec/"}},
     {"src/shadow", {"exec/"}},
@@ -35,6 +35,7 @@ const std::vector<IncludeRule> kRules = {
     {"src/oracle", {"exec/"}},
     {"src/explore", {"exec/"}},
     {"src/sweep", {"exec/"}},
+    {"src/trace", {"exec/"}},
 };
 
 // The quoted includes of a file, with their line numbers.

@@ -1,4 +1,4 @@
-#include "osmesa/gl_state.h"
+#include "trace/osmesa/gl_state.h"
 
 namespace shadowref::conformance {
 

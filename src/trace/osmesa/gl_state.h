@@ -1,5 +1,6 @@
-// RenderState as OpenGL state, for the two places that drive Mesa with shadowref's states: the
-// conformance cases (osmesa_harness.cpp) and bench/vs-mesa's frames (bench/mesa_frame.cpp).
+// RenderState as OpenGL state, for the places that drive Mesa with shadowref's states: `replay
+// --on osmesa:*` (osmesa_replay.cpp), the conformance cases (support/osmesa/osmesa_harness.cpp)
+// and bench/vs-mesa's frames (bench/mesa_frame.cpp).
 #pragma once
 
 #include <GL/osmesa.h>
