@@ -92,7 +92,7 @@ bool haveFfmpeg() { return runShell("command -v ffmpeg >/dev/null && command -v 
 
 }  // namespace
 
-TEST_CASE("--frames writes numbered frames and dumps in one process", "[cli][frames]") {
+TEST_CASE("render --frames writes numbered frames and dumps in one process", "[cli][frames]") {
   const fs::path scene = sceneFile();
   const fs::path out = testScratch() / "frames-numbered";
   fs::remove_all(out);
@@ -125,7 +125,7 @@ TEST_CASE("--frames writes numbered frames and dumps in one process", "[cli][fra
   CHECK(cmp.status == 0);
 }
 
-TEST_CASE("--frames: bad ranges and flags exit 2 and write nothing", "[cli][frames]") {
+TEST_CASE("render --frames: bad ranges and flags exit 2 and write nothing", "[cli][frames]") {
   const fs::path scene = sceneFile();
   const fs::path out = testScratch() / "frames-bad";
   fs::remove_all(out);
@@ -156,7 +156,7 @@ TEST_CASE("--frames: bad ranges and flags exit 2 and write nothing", "[cli][fram
   }
 }
 
-TEST_CASE("--gif without ffmpeg on PATH is a clear usage error", "[cli][frames]") {
+TEST_CASE("render --gif without ffmpeg on PATH is a clear usage error", "[cli][frames]") {
   const fs::path scene = sceneFile();
   const fs::path out = testScratch() / "frames-noffmpeg";
   fs::remove_all(out);
@@ -167,7 +167,7 @@ TEST_CASE("--gif without ffmpeg on PATH is a clear usage error", "[cli][frames]"
   CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("--gif, --mp4 and --contact-sheet hold every frame", "[cli][frames]") {
+TEST_CASE("render --gif, --mp4 and --contact-sheet hold every frame", "[cli][frames]") {
   if (!haveFfmpeg()) {
     WARN("ffmpeg/ffprobe not installed (scripts/setup.sh --role test): the movie checks are skipped");
     return;

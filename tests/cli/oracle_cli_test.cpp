@@ -79,7 +79,7 @@ TEST_CASE("render --oracle reproduces docs/shadow-maps.md's accuracy table: room
   CHECK(fs::exists(dir / "room-spot.oracle-L0.png"));
 }
 
-TEST_CASE("render --oracle: without shadows every pixel the light does not see is a missed shadow; z-fail agrees "
+TEST_CASE("render --oracle: without shadows every pixel the light does not see is a missed shadow, and z-fail agrees "
           "with the oracle everywhere on the minimal scene", "[cli][oracle]") {
   const fs::path dir = freshDir("minimal");
   const std::string size = "-D image.width=160 -D image.height=120";

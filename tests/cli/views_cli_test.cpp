@@ -106,7 +106,7 @@ TEST_CASE("the overflow scene's stencil legend stays small with 255 saturated co
   CHECK(pngHeight(dir / "o.stencil-L0.png") == 320 + 36);
 }
 
-TEST_CASE("--dump-region and --pixel-history read the stencil alike: 255 unsigned, -1 signed", "[cli][views]") {
+TEST_CASE("the region dump and the pixel history read the stencil alike: 255 unsigned, -1 signed", "[cli][views]") {
   // The overflow scene with saturating ops clamps the shadow's counts at 255; the image centre's
   // column crosses the shadow (docs/teaching.md, section 4).
   const fs::path dir = freshDir("consistent");
