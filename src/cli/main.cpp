@@ -2,10 +2,12 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/command_line.h"
+#include "cli/gl_handover.h"
 #include "image/atomic_write.h"
 
 int main(int argc, char** argv) {
   using namespace shadowref::cli;
+  handOverToGlProgram(argc, argv);
   CLI::App app;
   CommandArgs args;
   addCommands(app, args);
