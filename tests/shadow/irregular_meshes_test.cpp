@@ -241,10 +241,12 @@ TEST_CASE("a closed mesh with an inside-out part and a positive total volume: z-
     }
     INFO("compared " << compared << ", shadowed " << shadowed << ", wrong " << wrong << "; " << rays
                       << " shadow rays, " << raysDisagree << " disagree");
+    // Shares of the compared pixels, not counts: the sanitized run renders a quarter of the pixels,
+    // where edges (left out) take a larger share.
     CHECK(compared > size_t(kWidth * kHeight) / 2);
-    CHECK(shadowed > 100);
+    CHECK(shadowed > compared / 200);
     CHECK(wrong == 0);
-    CHECK(rays > size_t(kWidth * kHeight) / 2);
+    CHECK(rays > compared / 2);
     CHECK(raysDisagree == 0);
   }
 }
