@@ -13,6 +13,7 @@
 
 #include "image/channel_reader.h"
 #include "image/exr_header_check.h"
+#include "image/png_chunk_check.h"
 
 namespace shadowref {
 
@@ -25,7 +26,8 @@ int ChannelImage::channelIndex(const std::string& name) const {
 namespace {
 
 // Before any image library sees the file: a regular file of bounded size (a FIFO would block,
-// /dev/zero never end), and for an OpenEXR file every header attribute within the file's bytes.
+// /dev/zero never end), for an OpenEXR file every header attribute within the file's bytes, and
+// for a PNG every chunk.
 void checkFile(const std::string& path, const ReadLimits& limits) {
   auto refuse = [&](const std::string& why) { throw std::runtime_error("cannot read '" + path + "': " + why); };
   struct stat st {};
@@ -35,11 +37,16 @@ void checkFile(const std::string& path, const ReadLimits& limits) {
     refuse("the file has " + std::to_string(st.st_size) + " bytes, more than the limit of " +
            std::to_string(limits.maxFileBytes));
   std::ifstream file(path, std::ios::binary);
-  char magic[4] = {};
-  if (!file.read(magic, 4) || !looksLikeExr(std::string_view(magic, 4))) return;
+  char magic[8] = {};
+  file.read(magic, 8);
+  const std::string_view head(magic, size_t(file.gcount()));
+  const bool exr = head.size() >= 4 && looksLikeExr(head.substr(0, 4)), png = looksLikePng(head);
+  if (!exr && !png) return;
+  file.clear();
   file.seekg(0);
   const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (const std::string problem = checkExrHeaders(bytes); !problem.empty()) refuse(problem);
+  if (const std::string problem = exr ? checkExrHeaders(bytes) : checkPngChunks(bytes); !problem.empty())
+    refuse(problem);
 }
 
 #ifndef SHADOWREF_IMAGE_READER_LINKED

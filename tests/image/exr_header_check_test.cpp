@@ -8,6 +8,7 @@
 
 #include "image/channel_image.h"
 #include "image/exr_header_check.h"
+#include "image/png_chunk_check.h"
 #include "image/image_writer.h"
 #include "image/temp_dir.h"
 
@@ -159,6 +160,24 @@ TEST_CASE("shadowref's own EXRs pass the header walk, and the hostile one is ref
   // size from inside the next attribute.
   const std::string overrun = std::string(SHADOWREF_SOURCE_DIR) + "/tests/data/hostile/images/exr_channel_list_overrun.exr";
   CHECK_THROWS_WITH(readChannelImage(overrun), Catch::Matchers::Contains("does not end where its size says"));
+}
+
+TEST_CASE("PNG chunks are walked before libpng: a chunk longer than the file is refused", "[image][hostile]") {
+  const std::string signature("\x89PNG\r\n\x1a\n", 8);
+  // IHDR of 13 bytes with its CRC (not checked by the walk), then IEND: whole.
+  const std::string ihdr = std::string("\0\0\0\x0dIHDR", 8) + std::string(13, '\1') + "crc!";
+  const std::string iend = std::string("\0\0\0\0IEND", 8) + "crc!";
+  CHECK(looksLikePng(signature + ihdr));
+  CHECK_FALSE(looksLikePng("\x89PNX"));
+  CHECK(checkPngChunks(signature + ihdr + iend).empty());
+  // A text chunk declaring 0x40000000 bytes in a file of 57.
+  const std::string text = std::string("\x40\0\0\0tEXt", 8) + "x";
+  CHECK(checkPngChunks(signature + ihdr + text) ==
+        "PNG chunk 'tEXt' at byte 33 declares 1073741824 bytes, past the end of the file (42 bytes)");
+  CHECK_THAT(checkPngChunks(signature + std::string("\x80\0\0\0IDAT", 8)), Catch::Matchers::Contains("more than PNG allows"));
+  // The fuzzer's case: a 216-byte file whose second text chunk declares 1 GB, which libpng allocated.
+  const std::string hostile = std::string(SHADOWREF_SOURCE_DIR) + "/tests/data/hostile/images/png_text_chunk_overrun.png";
+  CHECK_THROWS_WITH(readChannelImage(hostile), Catch::Matchers::Contains("past the end of the file"));
 }
 
 TEST_CASE("readChannelImage reads only regular files within its size limit", "[image][hostile]") {
