@@ -24,12 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path freshDir(const std::string& name) {
-  const fs::path dir = testScratch() / ("compare-" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path freshDir(const std::string& name) { return testing::freshScratchDir("compare-" + name); }
 
 // A 10x10 RGB PNG, every pixel (100, 100, 100), except that the first `changed` pixels of the
 // top row have R = 100 + delta.

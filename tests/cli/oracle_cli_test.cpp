@@ -24,12 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path freshDir(const std::string& name) {
-  const fs::path dir = testScratch() / ("oracle-" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path freshDir(const std::string& name) { return testing::freshScratchDir("oracle-" + name); }
 
 // The figures of the first "oracle L0" line: compared, differ, near edge, elsewhere, false, missed.
 std::array<long, 6> figures(const std::string& out) {

@@ -22,12 +22,7 @@ using shadowref::testing::testScratch;
 
 namespace {
 
-fs::path freshDir(const std::string& name) {
-  const fs::path dir = testScratch() / ("views-" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path freshDir(const std::string& name) { return shadowref::testing::freshScratchDir("views-" + name); }
 
 // The height in a PNG's IHDR chunk (bytes 20..23, big-endian).
 uint32_t pngHeight(const fs::path& file) {

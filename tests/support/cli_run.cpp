@@ -17,6 +17,13 @@ fs::path testScratch() {
   return dir;
 }
 
+fs::path freshScratchDir(const std::string& name) {
+  const fs::path dir = testScratch() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
 std::string slurp(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::stringstream s;

@@ -15,6 +15,9 @@ struct CliRun {
 // A folder of this test process's own under the system's temporary folder (made if missing).
 std::filesystem::path testScratch();
 
+// testScratch() / name, emptied: made anew, whatever an earlier run left in it.
+std::filesystem::path freshScratchDir(const std::string& name);
+
 // A file's bytes.
 std::string slurp(const std::filesystem::path& file);
 

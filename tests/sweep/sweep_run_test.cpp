@@ -34,12 +34,7 @@ groups:
                    "t.sweep.yaml");
 }
 
-fs::path freshFolder(const std::string& name) {
-  const fs::path dir = testing::testScratch() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path freshFolder(const std::string& name) { return testing::freshScratchDir(name); }
 
 std::vector<const Job*> all(const Spec& spec) { return shardJobs(spec, 1, 1); }
 
