@@ -378,8 +378,9 @@ int renderScene(const RenderArgs& args, const Scene& sceneValue, const FrameHook
       const DepthTexture& map = frame.shadowMaps[i];
       const std::string png = siblingPath(outputs.front(), "shadowmap-" + frame.shadowMapNames[i]);
       const std::vector<float> depth = map.values();
-      views::writeViewPng(views::shadowMapView(depth, map.width, map.height), png,
-                          showing("shadow map " + frame.shadowMapNames[i]));
+      views::View picture = views::shadowMapView(depth, map.width, map.height);
+      views::drawShadowMapOutline(picture, frame.shadowMapOutlines[i]);
+      views::writeViewPng(picture, png, showing("shadow map " + frame.shadowMapNames[i]));
       Framebuffer holder(map.width, map.height);
       ExrExtras z;
       z.channels.push_back(NamedChannel::floatChannel("Z", depth));

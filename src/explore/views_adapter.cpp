@@ -222,7 +222,12 @@ ViewImage renderView(const Scene& scene, const ViewRequest& request, const Pipel
                                     std::to_string(frame.shadowMaps.size()) + " shadow maps");
       const DepthTexture& map = frame.shadowMaps[size_t(request.index)];
       const std::vector<float> depth = map.values();
-      copyView(views::shadowMapView(depth, map.width, map.height), out);
+      views::View picture = views::shadowMapView(depth, map.width, map.height);
+      views::drawShadowMapOutline(picture, frame.shadowMapOutlines[size_t(request.index)]);
+      copyView(picture, out);
+      nlohmann::json outlines = nlohmann::json::array();
+      for (const auto& [what, rgb] : picture.legend.outlines) outlines.push_back({{"what", what}, {"rgb", {rgb[0], rgb[1], rgb[2]}}});
+      out.info["outlines"] = outlines;
       out.values = topRowFirst(depth, map.width, map.height);
       out.valueName = "stored depth";
       out.info["map"] = frame.shadowMapNames[size_t(request.index)];

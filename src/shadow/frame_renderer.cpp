@@ -71,7 +71,7 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
     technique = findTechnique(options.method, among);
     if (!technique) throw std::invalid_argument("shadow method " + unknownTechniqueMessage(options.method, among));
   }
-  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  FrameResult result{Framebuffer(scene.width, scene.height, scene.depthFormat), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   // The pixel history always runs on the reference: its events are the definition.
   const PipelineKind kind = options.observer ? PipelineKind::Reference : options.pipeline;
   const std::unique_ptr<Pipeline> pipeline = options.pipelines && !options.observer

@@ -64,6 +64,16 @@ struct FrameOptions {
   std::function<void(std::span<const LightShadow* const>)> onShadowLookups;
 };
 
+// What a shadow map's teaching view draws over it (views::drawShadowMapOutline): the camera's
+// frustum, and for TSM's unwarped view the trapezoid.
+struct ShadowMapOutline {
+  glm::dmat4 worldToClip{1.0};             // world -> the map's clip space (x, y, w as the map was drawn)
+  std::array<glm::dvec3, 8> frustum{};     // the camera frustum's corners (world; trapezoid.h's order,
+                                           // the far plane fitted to the scene as TSM fits it)
+  std::vector<glm::dvec2> trapezoid;       // TSM's unwarped view: the trapezoid's corners (map x-y,
+                                           // [-1, 1]^2 the whole map); otherwise empty
+};
+
 struct PassTiming {
   std::string pass;
   double milliseconds = 0.0;
@@ -81,6 +91,7 @@ struct FrameResult {
   // With FrameOptions::keepShadowMaps: each light's depth map(s), named "L0" or "L0.face3".
   std::vector<DepthTexture> shadowMaps;
   std::vector<std::string> shadowMapNames;
+  std::vector<ShadowMapOutline> shadowMapOutlines;  // one per map
   // What the user should know about the scene, once each (`render` prints them on stderr): e.g.
   // a shadow-casting mesh the shadow volumes cannot take as it is written (volume_casting.h).
   std::vector<std::string> warnings;

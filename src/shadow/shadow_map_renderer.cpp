@@ -289,15 +289,21 @@ std::vector<std::vector<Light>> accumulationFrames(const std::vector<Light>& lig
 // TSM the teaching views: "L0" is the warped light view (the scene drawn with N_T as
 // projection, [Hempe 2004, Listing 12]), "L0.plain" the same light's unwarped map with the
 // trapezoid drawn over it in black (and a cross at the focus point).
-void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
+void keepShadowMaps(const Scene& scene, const SceneView& view, const std::vector<Instance>& instances,
                     const std::vector<std::unique_ptr<LightShadow>>& shadows, const Pipeline& frame,
                     FrameResult& result) {
+  const Camera& camera = scene.camera;
+  const std::array<glm::dvec3, 8> frustum =
+      frustumCorners(camera, view.aspect, fitFarToBounds(camera, worldBounds(instances)));
   for (size_t i = 0; i < shadows.size(); ++i) {
     const LightShadow& ls = *shadows[i];
     const std::string name = "L" + std::to_string(i);
     for (int f = 0; f < ls.mapCount(); ++f) {
       result.shadowMaps.push_back(ls.textures[size_t(f)]);
       result.shadowMapNames.push_back(name + (ls.cube ? ".face" + std::to_string(f) : ""));
+      const LightView& lv = ls.views[size_t(f)];
+      // The warped map was drawn with warp · P_light (its x, y and w rows are N_T's).
+      result.shadowMapOutlines.push_back({(ls.trapezoidal ? ls.warp : glm::dmat4(1.0)) * lv.projection * lv.view, frustum, {}});
     }
     if (!ls.trapezoidal) continue;
     RasterStats unused;
@@ -305,6 +311,8 @@ void keepShadowMaps(const Scene& scene, const std::vector<Instance>& instances,
     drawTrapezoidOutline(plain, ls.trapezoid);
     result.shadowMaps.push_back(std::move(plain));
     result.shadowMapNames.push_back(name + ".plain");
+    result.shadowMapOutlines.push_back({ls.views[0].projection * ls.views[0].view, frustum,
+                                        std::vector<glm::dvec2>(std::begin(ls.trapezoid.t), std::end(ls.trapezoid.t))});
   }
 }
 
@@ -350,7 +358,7 @@ void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions
       shadows.push_back(buildLightShadow(scene, instances, view, light, trapezoidal, pipeline, result.stats));
     const auto mapsDone = std::chrono::steady_clock::now();
     result.timings.push_back({numberedPass(passCounter, "maps"), std::chrono::duration<double, std::milli>(mapsDone - start).count()});
-    if (k == 0 && options.keepShadowMaps) keepShadowMaps(scene, instances, shadows, pipeline, result);
+    if (k == 0 && options.keepShadowMaps) keepShadowMaps(scene, view, instances, shadows, pipeline, result);
     if (k == 0) {
       for (size_t i = 0; i < shadows.size(); ++i) {
         std::ostringstream note;

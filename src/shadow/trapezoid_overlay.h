@@ -3,10 +3,19 @@
 // its texels on.
 #pragma once
 
+#include <functional>
+
 #include "gl/depth_compare_sampler.h"
 #include "shadow/trapezoid.h"
 
 namespace shadowref {
+
+// The texels of a width x height map that the line from a to b (map x-y, [−1, 1]² = the whole map)
+// passes through, sampled at half-texel steps (dense enough to leave no gaps, at most
+// 4 (width + height) steps); texels outside the map are skipped, a texel may come twice. The
+// trapezoid outline below and the teaching views' outlines (views/depth_view.h) draw with it.
+void forEachLineTexel(int width, int height, const glm::dvec2& a, const glm::dvec2& b,
+                      const std::function<void(int x, int y)>& texel);
 
 // Draws the trapezoid's four sides (light post-projective x-y, [−1, 1]² = the whole map) into
 // the depth map as lines of depth `value` (0: black in a grey dump), and a small cross at the

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/render_state.h"
+#include "shadow/frame_renderer.h"
 #include "views/view.h"
 
 namespace shadowref::views {
@@ -38,5 +39,16 @@ View depthView(std::span<const float> windowDepth, int width, int height, const 
 // TSM map's depths are warped (light_shadow.h), a perspective map's are not linear; the view
 // shows their order, and the colour bar the values the lookups compare with.
 View shadowMapView(std::span<const float> depth, int width, int height);
+
+// The colours of the outlines drawn over a shadow map: neither is on viridis nor kNothingDrawn.
+inline constexpr Rgb8 kFrustumColour = {255, 255, 255};
+inline constexpr Rgb8 kTrapezoidColour = {255, 48, 48};
+
+// Draws over a shadow map's view (shadowMapView, same size as the map) what the map was made
+// for: the camera frustum's twelve edges projected by outline.worldToClip, each clipped in clip
+// space to the map (-w <= x, y <= w) and to the front of the light (w > 0) before the division,
+// in kFrustumColour; then, for TSM's unwarped view, the trapezoid in kTrapezoidColour (the texels
+// the map's depth-0 outline holds, shadow/trapezoid_overlay.h). The legend gets the two colours.
+void drawShadowMapOutline(View& view, const ShadowMapOutline& outline);
 
 }  // namespace shadowref::views

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "image/image_writer.h"
@@ -28,6 +29,9 @@ struct ViewLegend {
   std::vector<std::string> labels;  // Swatches and Ramp: each value's text; ColourBar: lo's, hi's
   Rgb8 background{0, 0, 0};    // the colour of pixels with no value (nothing drawn there)
   bool hasBackground = false;  // whether the picture has such pixels
+  // Lines drawn over the picture (a shadow map's camera frustum and trapezoid) and what each
+  // colour shows; the page names them, composeView leaves them to the documentation.
+  std::vector<std::pair<std::string, Rgb8>> outlines;
 };
 
 struct View {

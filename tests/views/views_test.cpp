@@ -222,3 +222,52 @@ TEST_CASE("shadow map view: depth 0 takes the low end without widening the range
   CHECK(zeros.legend.kind == LegendKind::ColourBar);
   CHECK(zeros.legend.lo == 0.0);
 }
+
+TEST_CASE("shadow map outline: the frustum's edges clipped to the map and the light's front", "[views]") {
+  // An 8 x 8 map whose clip space is the world's x-y (w = 1): the frustum a box from x, y = -0.5
+  // to 0.5 projects to the square of texels 2..6 ((x + 1) / 2 · 8), its near and far faces on
+  // top of each other; the square's inside and the map's border stay as they were.
+  const std::vector<float> depth(64, 0.5f);
+  View view = shadowMapView(depth, 8, 8);
+  const Rgb8 before = pixel(view.picture, 4, 4);
+  ShadowMapOutline outline;
+  for (size_t i = 0; i < 8; ++i) {
+    const double x = (i % 4 == 1 || i % 4 == 2) ? 0.5 : -0.5, y = (i % 4 >= 2) ? 0.5 : -0.5;
+    outline.frustum[i] = {x, y, i < 4 ? 1.0 : 2.0};
+  }
+  drawShadowMapOutline(view, outline);
+  // Buffer (2, 2) is picture row 8 - 1 - 2 = 5.
+  for (const auto& [bx, by] : std::vector<std::pair<int, int>>{{2, 2}, {6, 2}, {6, 6}, {2, 6}, {4, 2}, {2, 4}})
+    CHECK(pixel(view.picture, bx, 7 - by) == kFrustumColour);
+  CHECK(pixel(view.picture, 4, 4) == before);
+  CHECK(pixel(view.picture, 0, 0) == before);
+  CHECK(pixel(view.picture, 7, 7) == before);
+  REQUIRE(view.legend.outlines.size() == 1);
+  CHECK(view.legend.outlines[0].first == "camera frustum");
+
+  // A perspective light (w = z): an edge from (0.5, 0) at w = 1 to a point behind the light
+  // (w = -1) runs in front of the light from x/w = 0.5 out to infinity, right of texel 6 along row
+  // 4; divided without clipping it would run to x/w = -0.5 instead, across the map's centre.
+  View behind = shadowMapView(depth, 8, 8);
+  ShadowMapOutline perspective;
+  perspective.worldToClip = glm::dmat4(1.0);
+  perspective.worldToClip[2][3] = 1.0;  // w = z (glm: [column][row])
+  perspective.worldToClip[3][3] = 0.0;
+  for (size_t i = 0; i < 8; ++i) perspective.frustum[i] = {0.5, 0.0, i < 4 ? 1.0 : -1.0};
+  drawShadowMapOutline(behind, perspective);
+  CHECK(pixel(behind.picture, 6, 7 - 4) == kFrustumColour);
+  CHECK(pixel(behind.picture, 7, 7 - 4) == kFrustumColour);
+  for (int x = 0; x < 6; ++x) CHECK(pixel(behind.picture, x, 7 - 4) == before);
+
+  // The trapezoid in its own colour, on the texels the map's depth-0 outline takes.
+  View tsm = shadowMapView(depth, 8, 8);
+  ShadowMapOutline plain;
+  plain.frustum = outline.frustum;
+  plain.worldToClip = glm::dmat4(0.0);  // the frustum collapses to the map's centre, w = 0: clipped away
+  plain.trapezoid = {{-0.75, -0.75}, {0.75, -0.75}, {0.25, 0.75}, {-0.25, 0.75}};
+  drawShadowMapOutline(tsm, plain);
+  CHECK(pixel(tsm.picture, 1, 7 - 1) == kTrapezoidColour);  // (-0.75 + 1) / 2 · 8 = 1
+  CHECK(pixel(tsm.picture, 6, 7 - 1) == kTrapezoidColour);  // on the base line from texel (1, 1) to (7, 1)
+  CHECK(pixel(tsm.picture, 4, 7 - 4) == before);
+  CHECK(tsm.legend.outlines.size() == 2);
+}

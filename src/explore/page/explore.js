@@ -157,6 +157,15 @@ function showKey(info) {
     item.append(swatch, String(entry.count));
     legend.append(item);
   }
+  // The lines over a shadow map: the camera frustum, and TSM's trapezoid in its unwarped view.
+  for (const line of info.outlines || []) {
+    const item = document.createElement('span');
+    item.className = 'outline';
+    const swatch = document.createElement('i');
+    swatch.style.background = 'rgb(' + line.rgb.join(',') + ')';
+    item.append(swatch, line.what);
+    legend.append(item);
+  }
   const bar = $('colourbar');
   bar.hidden = !info.range;
   if (info.range) {
