@@ -307,11 +307,11 @@ void addRoutes(httplib::Server& server, Explorer& explorer) {
   });
   server.Get("/api/history", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
-      const ExploreRequest r = parsed(req, {"D", "x", "y"});
+      const ExploreRequest r = parsed(req, {"D", "x", "y", "signed"});
       explorer.onRenderThread([&] {
         const std::shared_ptr<const Scene> scene = explorer.scene(r.overrides);
         checkPixel(r, *scene);
-        res.set_content(pixelHistory(*scene, r.x, r.y).dump(), "application/json");
+        res.set_content(pixelHistory(*scene, r.x, r.y, r.view.signedCounts).dump(), "application/json");
       });
     });
   });

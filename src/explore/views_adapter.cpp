@@ -9,8 +9,10 @@
 #include "shadow/draw_tag.h"
 #include "shadow/frame_renderer.h"
 #include "shadow/scene_view.h"
+#include "shadow/soft_lights.h"
 #include "shadow/technique_registry.h"
 #include "views/depth_view.h"
+#include "views/pixel_history.h"
 #include "views/stencil_counts_view.h"
 #include "views/volume_colours.h"
 
@@ -257,66 +259,99 @@ ViewImage renderView(const Scene& scene, const ViewRequest& request, const Pipel
 
 namespace {
 
-// Records every fragment at the watched pixel together with the pass it belongs to: the events of
-// a pass arrive before the pass's onPass call, so each event is filed under the next pass name.
-class HistoryRecorder final : public FragmentObserver {
- public:
-  explicit HistoryRecorder(const std::vector<Instance>& instances) : instances_(instances) {}
-  void onFragment(const FragmentEvent& e) override {
-    nlohmann::json f;
-    f["draw"] = e.drawIndex;
-    f["what"] = describeDrawTag(e.drawTag, instances_);
-    f["kind"] = name(drawKindOf(e.drawTag));
-    f["facing"] = e.facing == FrontFacing ? "front" : "back";
-    f["depth"] = e.depth;
-    f["storedDepth"] = e.storedDepth;
-    f["stencilTest"] = e.stencilPassed;
-    f["depthTest"] = e.stencilPassed ? nlohmann::json(e.depthPassed) : nlohmann::json(nullptr);
-    f["stencilBefore"] = int(e.stencilBefore);
-    f["stencilAfter"] = int(e.stencilAfter);
-    if (e.colorAfter != e.colorBefore) f["colour"] = {e.colorAfter.r, e.colorAfter.g, e.colorAfter.b};
-    pending_.push_back(std::move(f));
+nlohmann::json lookupJson(const views::HistoryLookup& l) {
+  const ShadowLookupTrace& t = l.trace;
+  nlohmann::json j;
+  j["light"] = "L" + std::to_string(l.light);
+  j["lightName"] = l.lightName;
+  if (t.face >= 0) j["face"] = t.face;
+  j["strq"] = {t.strq.x, t.strq.y, t.strq.z, t.strq.w};
+  j["str"] = {t.s, t.t, t.r};
+  j["result"] = t.result;
+  if (t.behindLight) {
+    j["outcome"] = "behind the light: lit";
+    return j;
   }
-  // A pass ended: its fragments are the pending ones.
-  void endPass(const std::string& pass) {
-    const size_t at = pass.rfind("-L");
-    const std::string light = at == std::string::npos ? "" : pass.substr(at + 1);
-    for (nlohmann::json& f : pending_) {
-      f["pass"] = pass;
-      f["light"] = light;
-      fragments_.push_back(std::move(f));
-    }
-    pending_.clear();
+  if (t.outsideMap) {
+    j["outcome"] = "outside the map fitted to the casters: lit";
+    return j;
   }
-  nlohmann::json fragments() {
-    endPass("(after the last pass)");
-    return fragments_;
-  }
-
- private:
-  const std::vector<Instance>& instances_;
-  nlohmann::json pending_ = nlohmann::json::array();
-  nlohmann::json fragments_ = nlohmann::json::array();
-};
+  j["texel"] = {t.texelX, t.texelY};
+  j["mapSize"] = {t.mapWidth, t.mapHeight};
+  j["stored"] = t.stored;
+  j["compared"] = t.compared;
+  j["passed"] = t.passed;
+  j["pcf"] = t.pcf;
+  j["outcome"] = t.passed ? "r <= D: lit" : "r > D: shadowed";
+  return j;
+}
 
 }  // namespace
 
-nlohmann::json pixelHistory(const Scene& scene, int x, int y) {
+nlohmann::json pixelHistory(const Scene& scene, int x, int y, bool signedCounts) {
   const std::vector<Instance> instances = scene.instances();
-  HistoryRecorder recorder(instances);
+  views::PixelHistory history(x, y);  // the history `render --pixel-history` prints
   FrameOptions options;
   options.pipeline = PipelineKind::Reference;  // the pixel history's events are the reference's
-  options.watchX = x;
-  options.watchY = y;
-  options.observer = &recorder;
   options.keepVisibility = true;
   options.keepStencil = techniqueOf(scene.shadow).countsInStencil;
-  options.onPass = [&](const std::string& pass, const Framebuffer&) { recorder.endPass(pass); };
+  history.attach(options);
   const FrameResult frame = renderFrame(scene, options);
+  // L<i>: the lights as the passes number them, soft ones expanded (as the command line names them).
+  std::vector<std::string> lightNames;
+  for (const Light& light : scene.lights)
+    for (const Light& l : expandSoftLight(light)) lightNames.push_back(l.name);
+  const auto count = [&](uint8_t v) { return views::stencilCountOf(v, signedCounts); };
+  nlohmann::json steps = nlohmann::json::array();
+  nlohmann::json passes = nlohmann::json::array();
+  for (const views::HistoryPass& pass : history.passes()) {
+    const std::string passName = pass.name.empty() ? "(unfinished)" : pass.name;
+    std::string lightName;
+    if (!pass.light.empty()) {
+      const size_t i = std::stoul(pass.light.substr(1));
+      if (i < lightNames.size()) lightName = lightNames[i];
+    }
+    nlohmann::json p{{"name", passName}, {"light", pass.light}, {"lightName", lightName}, {"steps", pass.steps.size()}};
+    if (pass.stencilAfter) p["stencilAfter"] = count(*pass.stencilAfter);
+    passes.push_back(p);
+    for (const views::HistoryStep& step : pass.steps) {
+      nlohmann::json f{{"pass", passName}, {"light", pass.light}, {"lightName", lightName}};
+      if (step.kind == views::HistoryStep::Kind::Clear) {
+        const ClearEvent& c = step.clear;
+        f["type"] = "clear";
+        f["stencil"] = c.stencilAfter ? nlohmann::json{count(*c.stencilBefore), count(*c.stencilAfter)} : nlohmann::json(nullptr);
+        f["depth"] = c.depthAfter ? nlohmann::json{*c.depthBefore, *c.depthAfter} : nlohmann::json(nullptr);
+        f["colour"] = c.color;
+        steps.push_back(std::move(f));
+        continue;
+      }
+      const FragmentEvent& e = step.fragment;
+      f["type"] = "fragment";
+      f["draw"] = e.drawIndex;
+      f["what"] = describeDrawTag(e.drawTag, instances);
+      f["kind"] = name(drawKindOf(e.drawTag));
+      f["facing"] = e.facing == FrontFacing ? "front" : "back";
+      f["depth"] = e.depth;
+      f["storedDepth"] = e.storedDepth;
+      f["stencilTest"] = e.stencilPassed;
+      f["depthTest"] = e.stencilPassed ? nlohmann::json(e.depthPassed) : nlohmann::json(nullptr);
+      f["stencilBefore"] = count(e.stencilBefore);
+      f["stencilAfter"] = count(e.stencilAfter);
+      if (e.colorAfter != e.colorBefore) f["colour"] = {e.colorAfter.r, e.colorAfter.g, e.colorAfter.b};
+      nlohmann::json lookups = nlohmann::json::array();
+      for (const views::HistoryLookup& l : step.lookups) lookups.push_back(lookupJson(l));
+      if (!lookups.empty()) f["lookups"] = std::move(lookups);
+      steps.push_back(std::move(f));
+    }
+  }
   nlohmann::json out;
   out["x"] = x;
   out["y"] = y;
-  out["fragments"] = recorder.fragments();
+  out["signed"] = signedCounts;
+  out["fragments"] = history.fragmentCount();
+  out["steps"] = std::move(steps);
+  out["passes"] = std::move(passes);
+  out["lightNames"] = lightNames;
   const glm::vec4 c = frame.framebuffer.colorAt(x, y);
   out["colour"] = {toByte(double(c.r)), toByte(double(c.g)), toByte(double(c.b))};
   const size_t i = size_t(y) * size_t(frame.framebuffer.width()) + size_t(x);
@@ -325,7 +360,7 @@ nlohmann::json pixelHistory(const Scene& scene, int x, int y) {
   out["visibility"] = visibility;
   nlohmann::json stencil = nlohmann::json::object();
   for (size_t l = 0; l < frame.stencilPerLight.size(); ++l)
-    stencil[frame.stencilLightNames[l]] = int(frame.stencilPerLight[l][i]);
+    stencil[frame.stencilLightNames[l]] = count(frame.stencilPerLight[l][i]);
   out["stencil"] = stencil;
   return out;
 }

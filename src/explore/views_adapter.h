@@ -52,11 +52,14 @@ struct ViewImage {
 // the explorer renders, so that consecutive frames share its threads.
 ViewImage renderView(const Scene& scene, const ViewRequest& request, const PipelineMaker& pipelines);
 
-// Every fragment that reached pixel (x, y) (framebuffer coordinates, row 0 at the bottom), in
-// order, with its pass, light, object, facing, depths, test outcomes and stencil before and after
-// (rendered by the reference pipeline, as `render --pixel-history`), and the values of every view
-// at the pixel.
-nlohmann::json pixelHistory(const Scene& scene, int x, int y);
+// The history of pixel (x, y) (framebuffer coordinates, row 0 at the bottom) as `render
+// --pixel-history` prints it, from the same views::PixelHistory: in order, every fragment with its
+// pass, light, object, facing, depths, test outcomes and stencil before and after, every clear of
+// the pixel (the stencil clear before each light's volumes), and for a shadow-map method each
+// lookup of a shaded fragment (light-space coordinates, texel, stored depth, compared r, result);
+// stencil values unsigned, or signed (128..255 as -128..-1). Also the pixel's final colour and
+// its visibility and stencil count per light.
+nlohmann::json pixelHistory(const Scene& scene, int x, int y, bool signedCounts = false);
 
 // The scene as the page's controls need it: image size, camera, lights, shadow settings, the
 // methods there are.

@@ -271,25 +271,64 @@ function walk(step) {
   changed();
 }
 
-// ---- pixel history: every fragment, and why the pixel is what it is
+// ---- pixel history: every fragment, clear and shadow-map lookup, from the server's
+// views::PixelHistory (the one `shadowref render --pixel-history` prints), and why the pixel is
+// what it is
 async function history(p) {
   $('history').textContent = 'rendering the history of pixel ' + p.x + ',' + p.y + ' ...';
-  const response = await fetch('api/history?' + query({ x: p.x, y: p.y }));
+  const params = { x: p.x, y: p.y };
+  if (state.signed) params.signed = 1;
+  const response = await fetch('api/history?' + query(params));
   if (!response.ok) { $('history').textContent = await response.text(); return; }
   showHistory(await response.json());
 }
 
+const lightLabel = (s) => s.light ? s.light + (s.lightName ? " '" + s.lightName + "'" : '') : '';
+
+function lookupText(l) {
+  let text = 'lookup ' + l.light + " '" + l.lightName + "'" + (l.face !== undefined ? ' cube face ' + l.face : '') +
+    ': s,t,r (' + l.str.map((v) => Number(v.toPrecision(6))).join(', ') + ')';
+  if (l.texel) {
+    text += '  texel (' + l.texel.join(', ') + ') of ' + l.mapSize.join('x') + '  stored D ' + Number(l.stored.toPrecision(9)) +
+      '  compared r ' + Number(l.compared.toPrecision(9)) + (l.passed ? ' <= D: lit' : ' > D: shadowed');
+    if (l.pcf > 1) text += '  (nearest texel; ' + l.pcf + 'x' + l.pcf + ' PCF mean)';
+  } else {
+    text += '  ' + l.outcome;
+  }
+  return text + '  result ' + Number(l.result.toPrecision(6));
+}
+
+// One sentence per light: the stencil its lit pass found (shadow volumes), or what the visible
+// fragment's lookup into its map compared (shadow maps).
 function verdict(h) {
   const lines = [];
-  const lights = new Set(h.fragments.map((f) => f.light).filter((l) => l));
+  const fragments = h.steps.filter((s) => s.type === 'fragment');
+  const lights = [...new Set(h.steps.map((s) => s.light).filter((l) => l))];
   for (const light of lights) {
-    const lit = h.fragments.filter((f) => f.light === light && f.pass.includes('lit'));
-    const stencilPass = h.fragments.filter((f) => f.light === light && f.pass.includes('stencil'));
-    const last = stencilPass.length ? stencilPass[stencilPass.length - 1].stencilAfter : 0;
-    if (lit.some((f) => f.stencilTest && f.depthTest)) lines.push('lit by ' + light + ': its lit pass reached the pixel');
+    const mine = fragments.filter((f) => f.light === light);
+    const label = lightLabel(mine[0] || h.steps.find((s) => s.light === light));
+    const lit = mine.filter((f) => f.pass.includes('lit'));
+    const volume = mine.filter((f) => f.pass.includes('stencil'));
+    const clear = h.steps.find((s) => s.type === 'clear' && s.light === light && s.stencil);
+    const count = lit.length ? lit[0].stencilBefore : volume.length ? volume[volume.length - 1].stencilAfter : null;
+    if (lit.some((f) => f.stencilTest && f.depthTest))
+      lines.push('lit by ' + label + ': the stencil held 0 when its lit pass was drawn, so the lit pass reached the pixel');
     else if (lit.some((f) => !f.stencilTest))
-      lines.push('in the shadow of ' + light + ': the stencil held ' + last + ' (not 0) when its lit pass was drawn, so the stencil test failed');
-    else if (stencilPass.length) lines.push(light + ': ' + stencilPass.length + ' volume fragments left the stencil at ' + last);
+      lines.push('in the shadow of ' + label + ': ' + (clear ? 'cleared to ' + clear.stencil[1] + ', ' : '') + volume.length +
+        ' volume fragments left the stencil at ' + count + ' (not 0), so the stencil test of its lit pass failed');
+    else if (volume.length) lines.push(label + ': ' + volume.length + ' volume fragments left the stencil at ' + count);
+  }
+  // Shadow maps: the last shaded fragment is the one seen; its lookups say lit or shadowed.
+  const shaded = fragments.filter((f) => f.lookups && f.depthTest);
+  if (shaded.length) {
+    for (const l of shaded[shaded.length - 1].lookups) {
+      const who = l.light + " '" + l.lightName + "'";
+      if (!l.texel) lines.push('lit by ' + who + ': ' + l.outcome);
+      else if (l.passed) lines.push('lit by ' + who + ': r = ' + Number(l.compared.toPrecision(7)) + ' is not farther than the stored D = ' +
+        Number(l.stored.toPrecision(7)) + ' at texel (' + l.texel.join(', ') + ')');
+      else lines.push('in the shadow of ' + who + ': r = ' + Number(l.compared.toPrecision(7)) + ' lies behind the stored D = ' +
+        Number(l.stored.toPrecision(7)) + ' at texel (' + l.texel.join(', ') + '): something nearer the light covers it');
+    }
   }
   for (const [name, v] of Object.entries(h.visibility || {})) lines.push('visibility of ' + name + ': ' + v);
   return lines;
@@ -299,7 +338,8 @@ function showHistory(h) {
   const box = $('history');
   box.textContent = '';
   const title = document.createElement('h2');
-  title.textContent = 'pixel ' + h.x + ',' + h.y + ': ' + h.fragments.length + ' fragments, final colour (' + h.colour.join(', ') + ')';
+  title.textContent = 'pixel ' + h.x + ',' + h.y + ': ' + h.fragments + ' fragments, final colour (' + h.colour.join(', ') + ')' +
+    '; stencil ' + (h.signed ? 'signed' : 'unsigned');
   box.append(title);
   for (const line of verdict(h)) {
     const p = document.createElement('p');
@@ -308,16 +348,35 @@ function showHistory(h) {
     box.append(p);
   }
   const table = document.createElement('table');
-  const head = ['#', 'pass', 'light', 'draw', 'facing', 'z', 'stored z', 'stencil test', 'depth test', 'stencil', 'colour'];
+  const head = ['#', 'pass', 'light', 'draw', 'object', 'facing', 'z', 'stored z', 'stencil test', 'depth test', 'stencil', 'colour'];
   table.append(row(head, 'th'));
-  h.fragments.forEach((f, i) => {
-    const r = row([i, f.pass, f.light || '-', f.what, f.facing, f.depth.toPrecision(7), f.storedDepth.toPrecision(7),
-      f.stencilTest ? 'pass' : 'FAIL', f.depthTest === null ? '-' : f.depthTest ? 'pass' : 'FAIL',
-      f.stencilBefore + ' → ' + f.stencilAfter, f.colour ? f.colour.map((c) => c.toFixed(3)).join(' ') : ''], 'td');
-    r.children[7].className = f.stencilTest ? 'pass' : 'fail';
-    r.children[8].className = f.depthTest ? 'pass' : 'fail';
+  let n = 0;
+  for (const s of h.steps) {
+    if (s.type === 'clear') {
+      const what = [];
+      if (s.stencil) what.push('stencil ' + s.stencil[0] + ' → ' + s.stencil[1]);
+      if (s.depth) what.push('depth ' + s.depth[0] + ' → ' + s.depth[1]);
+      if (s.colour) what.push('colour');
+      const r = row(['', s.pass, lightLabel(s) || '-', 'clear', what.join(', ')], 'td');
+      r.className = 'clear';
+      r.lastChild.colSpan = head.length - 4;
+      table.append(r);
+      continue;
+    }
+    const r = row([n++, s.pass, lightLabel(s) || '-', s.draw, s.what, s.facing, s.depth.toPrecision(7), s.storedDepth.toPrecision(7),
+      s.stencilTest ? 'pass' : 'FAIL', s.depthTest === null ? '-' : s.depthTest ? 'pass' : 'FAIL',
+      s.stencilBefore + ' → ' + s.stencilAfter, s.colour ? s.colour.map((c) => c.toFixed(3)).join(' ') : ''], 'td');
+    r.className = 'fragment';
+    r.children[8].className = s.stencilTest ? 'pass' : 'fail';
+    r.children[9].className = s.depthTest ? 'pass' : 'fail';
     table.append(r);
-  });
+    for (const l of s.lookups || []) {
+      const lr = row(['', '', l.light, '', lookupText(l)], 'td');
+      lr.className = 'lookup ' + (l.result < 1 ? 'fail' : 'pass');
+      lr.lastChild.colSpan = head.length - 4;
+      table.append(lr);
+    }
+  }
   box.append(table);
 }
 
