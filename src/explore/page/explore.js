@@ -18,7 +18,7 @@ let initial = null;    // the state the page started in: a setting is sent only 
 const state = {
   eye: [0, 0, 5], target: [0, 0, 0],
   method: 'none', twoSided: true, wrap: true, darken: false, mapSize: 1024, pcf: 1,
-  lights: [],          // {name, type, on, position, soft}
+  lights: [],          // {name, type, on, position, direction, soft}
   light: 0,            // the light the sliders move
   view: 'frame', index: 0, signed: false,
 };
@@ -44,7 +44,8 @@ function overrides() {
   state.lights.forEach((l, i) => {
     const first = initial.lights[i];
     if (!l.on) { d.push('lights.' + l.name + '=off'); return; }
-    if (vec(l.position) !== vec(first.position)) d.push('lights.' + l.name + '.position=' + vec(l.position));
+    if (l.type !== 'directional' && vec(l.position) !== vec(first.position)) d.push('lights.' + l.name + '.position=' + vec(l.position));
+    if (l.type !== 'point' && vec(l.direction) !== vec(first.direction)) d.push('lights.' + l.name + '.direction=' + vec(l.direction));
     if (l.soft !== first.soft) d.push('lights.' + l.name + '.soft.shape=' + l.soft);
   });
   return d;
@@ -390,6 +391,111 @@ function row(cells, tag) {
   return tr;
 }
 
+// ---- lights on the picture: a marker at each point and spot light, dragged to move the light
+// parallel to the picture plane (its distance along the view axis kept). The projection is the
+// camera's (gluPerspective with the scene's vertical field of view and up vector, as the server
+// renders it), so a marker sits on the light in a camera view.
+function cameraBasis() {
+  const f = normal(sub(state.target, state.eye));
+  const r = normal(cross(f, scene.camera.up));
+  const u = cross(r, f);
+  const canvas = $('image');
+  const tanY = Math.tan(scene.camera.fov * Math.PI / 360);
+  return { f, r, u, tanY, tanX: tanY * canvas.width / canvas.height, width: canvas.width, height: canvas.height };
+}
+
+function projectPoint(p) {
+  const c = cameraBasis();
+  const d = sub(p, state.eye);
+  const z = dot(d, c.f);
+  if (!(z > scene.camera.near)) return null;
+  const x = dot(d, c.r) / (z * c.tanX), y = dot(d, c.u) / (z * c.tanY);
+  return { col: (x + 1) / 2 * c.width, row: (1 - y) / 2 * c.height, z };
+}
+
+function unprojectPoint(col, row, z) {
+  const c = cameraBasis();
+  const x = col / c.width * 2 - 1, y = 1 - row / c.height * 2;
+  return add(state.eye, add(scale(c.f, z), add(scale(c.r, x * z * c.tanX), scale(c.u, y * z * c.tanY))));
+}
+
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+// The markers show on the pictures the camera sees, not on a shadow map.
+const cameraPicture = () => scene && !exported && state.view !== 'shadowmap' && $('image').width === scene.width &&
+  $('image').height === scene.height;
+const kMarkerRadius = 7;
+
+function lightMarkers() {
+  if (!cameraPicture()) return [];
+  const marks = [];
+  state.lights.forEach((l, i) => {
+    if (l.type === 'directional') return;
+    const p = projectPoint(l.position);
+    if (p) marks.push({ i, ...p });
+  });
+  return marks;
+}
+
+let drawnMarks = '';
+function drawLightMarks() {
+  const marks = lightMarkers();
+  const key = JSON.stringify([marks, state.lights.map((l) => l.on), state.light]);
+  if (key !== drawnMarks) {
+    drawnMarks = key;
+    const canvas = $('marks');
+    const g = canvas.getContext('2d');
+    g.clearRect(0, 0, canvas.width, canvas.height);
+    for (const m of marks) {
+      const l = state.lights[m.i];
+      g.beginPath();
+      g.arc(m.col, m.row, kMarkerRadius, 0, 2 * Math.PI);
+      g.lineWidth = m.i === state.light ? 3 : 1.5;
+      g.strokeStyle = '#000';
+      g.stroke();
+      g.lineWidth = m.i === state.light ? 1.5 : 1;
+      g.strokeStyle = '#ffd84a';
+      g.stroke();
+      if (l.on) { g.fillStyle = 'rgba(255, 216, 74, 0.5)'; g.fill(); }
+      g.font = '12px sans-serif';
+      g.fillStyle = '#ffd84a';
+      g.fillText(l.name + (l.on ? '' : ' (off)'), m.col + kMarkerRadius + 3, m.row + 4);
+    }
+  }
+  requestAnimationFrame(drawLightMarks);
+}
+
+function wireLightDrag() {
+  const canvas = $('image');
+  let dragging = null;
+  const canvasPoint = (e) => {
+    const rect = canvas.getBoundingClientRect();
+    return [(e.clientX - rect.left) * canvas.width / rect.width, (e.clientY - rect.top) * canvas.height / rect.height];
+  };
+  // Captured on the way down to the picture: a press on a marker moves the light, not the camera.
+  $('stage').addEventListener('mousedown', (e) => {
+    if (e.button !== 0) return;
+    const [col, row] = canvasPoint(e);
+    const hit = lightMarkers().find((m) => Math.hypot(m.col - col, m.row - row) <= kMarkerRadius + 2);
+    if (!hit) return;
+    e.stopPropagation();
+    e.preventDefault();
+    selectLight(hit.i);
+    dragging = { i: hit.i, z: hit.z };
+  }, { capture: true });
+  window.addEventListener('mousemove', (e) => {
+    if (!dragging) return;
+    const [col, row] = canvasPoint(e);
+    const l = state.lights[dragging.i];
+    l.position = unprojectPoint(col, row, dragging.z);
+    selectLight(dragging.i);
+    changed();
+  });
+  window.addEventListener('mouseup', () => { dragging = null; });
+  requestAnimationFrame(drawLightMarks);
+}
+// For the tests: where light i's marker is on the picture (canvas pixels), or null.
+window.exploreLightMarker = (i) => lightMarkers().find((m) => m.i === i) || null;
+
 // ---- controls
 function fillSelect(select, values, labels) {
   select.textContent = '';
@@ -432,13 +538,16 @@ function selectLight(i) {
   $('light').value = String(i);
   const l = state.lights[i];
   const b = scene.bounds;
+  // A directional light has no position, a point light no direction (the scene format's rule).
+  $('light-position').hidden = l.type === 'directional';
+  $('light-direction').hidden = l.type === 'point';
   ['lx', 'ly', 'lz'].forEach((id, k) => {
     const input = $(id);
     input.min = String(Math.min(b.min[k], l.position[k]));
     input.max = String(Math.max(b.max[k], l.position[k]));
     input.value = String(l.position[k]);
-    input.disabled = l.type === 'directional';
   });
+  ['dx', 'dy', 'dz'].forEach((id, k) => { $(id).value = String(l.direction[k]); });
   $('soft').value = l.soft;
 }
 
@@ -476,6 +585,11 @@ function wireControls() {
     state.lights[state.light].position[k] = Number(e.target.value);
     changed();
   }));
+  ['dx', 'dy', 'dz'].forEach((id, k) => $(id).addEventListener('input', (e) => {
+    state.lights[state.light].direction[k] = Number(e.target.value);
+    changed();
+  }));
+  wireLightDrag();
   $('reset').addEventListener('click', () => {
     state.eye = [...scene.camera.eye];
     state.target = [...scene.camera.target];
@@ -569,7 +683,7 @@ async function start() {
   state.darken = scene.shadow.darken_composite;
   state.mapSize = scene.shadow.map_size;
   state.pcf = scene.shadow.pcf;
-  state.lights = scene.lights.map((l) => ({ name: l.name, type: l.type, on: true, position: [...l.position], soft: l.soft }));
+  state.lights = scene.lights.map((l) => ({ name: l.name, type: l.type, on: true, position: [...l.position], direction: [...l.direction], soft: l.soft }));
   initial = JSON.parse(JSON.stringify(state));
   fillSelect($('method'), scene.methods.map((m) => m.name));
   $('method').value = state.method;
