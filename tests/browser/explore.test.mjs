@@ -2,7 +2,11 @@
 // in headless Chromium, orbits, switches method and view with the documents' keys, clicks a pixel
 // and reads its history, compares the picture on the screen with `shadowref render` for the same
 // -D values, and checks that bad requests get a 400 and a broken scene its file:line:col on the
-// page, and that --export's handout works from file:// with no server. It saves screenshots of the walk-through in docs/teaching.md into SCREENSHOT_DIR.
+// page, and that --export's handout works from file:// with no server. The history on the page is
+// checked step for step against `render --pixel-history` (clears and shadow-map lookups too); a
+// light dragged on the picture, switched off, or turned with the sliders renders as `shadowref
+// render` with the state's -D values; TSM's map views show the camera frustum and the trapezoid
+// as `--dump shadowmap` draws them. It saves the screenshots of docs/teaching.md into SCREENSHOT_DIR.
 //   node tests/browser/explore.test.mjs SHADOWREF_BINARY [SCREENSHOT_DIR]
 // Run from the source folder (ctest does; label "browser").
 import assert from 'node:assert/strict';
@@ -25,17 +29,21 @@ const scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'explore-test-'));
 const started = Date.now();
 const step = (what) => console.log(`[${((Date.now() - started) / 1000).toFixed(1)} s] ${what}`);
 
-// The picture area of the page (the canvas) as a screenshot, PNG bytes.
-async function pictureShot(page, name) {
+// The picture area of the page (the canvas) as a screenshot, PNG bytes: the rendered picture
+// alone, or with `marks` the lights' markers drawn over it too.
+async function pictureShot(page, name, marks = false) {
   const box = await imageBox(page);
+  if (!marks) await page.$eval('#marks', (m) => { m.style.visibility = 'hidden'; });
   const png = await page.screenshot({ clip: box, type: 'png' });
+  await page.$eval('#marks', (m) => { m.style.visibility = ''; });
   if (name) fs.writeFileSync(path.join(shots, name), png);
   return png;
 }
 
-// Decodes two PNGs in the page and counts the pixels whose R, G or B differ.
-async function differingPixels(page, pngA, pngB) {
-  return page.evaluate(async (a, b) => {
+// Decodes two PNGs in the page and counts the pixels whose R, G or B differ; with `region`
+// ([width, height]) only in that rectangle at the top left of each (a view beside its legend).
+async function differingPixels(page, pngA, pngB, region = null) {
+  return page.evaluate(async (a, b, r) => {
     const decode = async (b64) => {
       const image = new Image();
       image.src = 'data:image/png;base64,' + b64;
@@ -48,17 +56,69 @@ async function differingPixels(page, pngA, pngB) {
       return g.getImageData(0, 0, c.width, c.height);
     };
     const [x, y] = [await decode(a), await decode(b)];
-    if (x.width !== y.width || x.height !== y.height) return { size: [x.width, x.height, y.width, y.height] };
+    const [w, h] = r || [x.width, x.height];
+    if (!r && (x.width !== y.width || x.height !== y.height)) return { size: [x.width, x.height, y.width, y.height] };
+    if (w > x.width || w > y.width || h > x.height || h > y.height) return { size: [x.width, x.height, y.width, y.height] };
     let differing = 0;
-    for (let i = 0; i < x.data.length; i += 4)
-      if (x.data[i] !== y.data[i] || x.data[i + 1] !== y.data[i + 1] || x.data[i + 2] !== y.data[i + 2]) differing += 1;
-    return { differing, pixels: x.width * x.height };
-  }, Buffer.from(pngA).toString('base64'), Buffer.from(pngB).toString('base64'));
+    for (let row = 0; row < h; row++)
+      for (let col = 0; col < w; col++) {
+        const i = (row * x.width + col) * 4, j = (row * y.width + col) * 4;
+        if (x.data[i] !== y.data[j] || x.data[i + 1] !== y.data[j + 1] || x.data[i + 2] !== y.data[j + 2]) differing += 1;
+      }
+    return { differing, pixels: w * h };
+  }, Buffer.from(pngA).toString('base64'), Buffer.from(pngB).toString('base64'), region);
 }
 
-function cliRender(overrides, extra = []) {
+// The steps of a pixel history as `render --pixel-history` prints them: per clear its stencil,
+// per fragment its draw, facing, test outcomes and stencil before and after, per shadow-map lookup
+// its light, texel and result.
+function cliSteps(text) {
+  const out = [];
+  for (const line of text.split('\n')) {
+    let m;
+    if ((m = line.match(/^  clear(?:  stencil (-?\d+) -> (-?\d+))?/))) out.push('clear ' + (m[1] !== undefined ? m[1] + '>' + m[2] : '-'));
+    else if ((m = line.match(/^  draw (\d+) .*  (front|back)  z=.*stencil test (pass|FAIL)  depth test (pass|FAIL|-)  stencil (-?\d+) -> (-?\d+)/)))
+      out.push(`draw ${m[1]} ${m[2]} ${m[3]} ${m[4]} ${m[5]}>${m[6]}`);
+    else if ((m = line.match(/^      lookup light (L\d+) .*?(?:texel \((\d+), (\d+)\).*)?result (\S+)$/)))
+      out.push(`lookup ${m[1]} ${m[2] ?? '-'},${m[3] ?? '-'} ${Number(m[4])}`);
+  }
+  return out;
+}
+
+// The same from the history table on the page.
+async function pageSteps(page) {
+  return page.$$eval('#history table tr', (rows) => rows.slice(1).map((r) => {
+    const c = [...r.children].map((x) => x.textContent);
+    if (r.className === 'clear') {
+      const m = c[4].match(/stencil (-?\d+) → (-?\d+)/);
+      return 'clear ' + (m ? m[1] + '>' + m[2] : '-');
+    }
+    if (r.className === 'fragment') {
+      const st = c[10].split(' → ');
+      return `draw ${c[3]} ${c[5]} ${c[8]} ${c[9]} ${st[0]}>${st[1]}`;
+    }
+    const m = c[4].match(/^lookup (L\d+) .*?(?:texel \((\d+), (\d+)\).*)?result (\S+)$/);
+    return m ? `lookup ${m[1]} ${m[2] ?? '-'},${m[3] ?? '-'} ${Number(m[4])}` : 'unreadable row: ' + c.join('|');
+  }));
+}
+
+// Clicks picture pixel (col, row) and waits for its history; resolves to the table's steps and
+// `render --pixel-history` for the page's state at the same pixel.
+async function historyAgainstCli(page, col, row, scene) {
+  const box = await imageBox(page);
+  await page.$eval('#history', (h) => { h.textContent = ''; });
+  await page.mouse.click(box.x + col + 0.5, box.y + row + 0.5);
+  await page.waitForSelector('#history table', { timeout: 60000 });
+  const height = await page.$eval('#image', (c) => c.height);
+  const y = height - 1 - row;
+  const overrides = await page.evaluate(() => window.exploreOverrides());
+  const printed = cliRender(overrides, ['--pixel-history', `${col},${y}`], scene).stdout;
+  return { page: await pageSteps(page), cli: cliSteps(printed), printed, y };
+}
+
+function cliRender(overrides, extra = [], scene = 'scenes/pumpkins.yaml') {
   const out = path.join(scratch, 'cli.png');
-  const args = ['render', 'scenes/pumpkins.yaml', '--quiet', '-o', out, ...extra];
+  const args = ['render', scene, '--quiet', '-o', out, ...extra];
   for (const o of overrides) args.push('-D', o);
   const stdout = execFileSync(binary, args, { encoding: 'utf8' });
   return { png: fs.readFileSync(out), stdout };
@@ -147,7 +207,7 @@ try {
   const col = 240, row = 420;
   await page.mouse.click(box.x + col + 0.5, box.y + row + 0.5);
   await page.waitForSelector('#history table', { timeout: 60000 });
-  const rows = await page.$$eval('#history table tr', (r) => r.length - 1);
+  const rows = await page.$$eval('#history table tr.fragment', (r) => r.length);
   const title = await page.$eval('#history h2', (h) => h.textContent);
   const y = 640 - 1 - row;
   assert.ok(title.startsWith(`pixel ${col},${y}:`), title);
@@ -158,6 +218,63 @@ try {
   assert.ok(why.length > 0, 'the history says why');
   await page.screenshot({ path: path.join(shots, 'explore-page-history.png'), fullPage: true });
   step(`pixel ${col},${y}: ${rows} fragments; ${why[0]}`);
+
+  // The page's history is the one `render --pixel-history` prints: the same steps in the same
+  // order, the stencil clear before the lantern's volumes among them.
+  const zfailHistory = await historyAgainstCli(page, col, row);
+  assert.deepEqual(zfailHistory.page, zfailHistory.cli, 'page and --pixel-history agree (z-fail)');
+  assert.ok(zfailHistory.page.some((s) => s.startsWith('clear 0>0')), 'the stencil clear is listed: ' + zfailHistory.page);
+  assert.ok(why.some((w) => w.startsWith('in the shadow of L0') || w.startsWith('lit by L0')), 'a verdict per light: ' + why);
+  // With a shadow map: the lookups of the visible fragment, light-space texel and result.
+  await page.select('#method', 'shadowmap');
+  await settle(page);
+  const mapHistory = await historyAgainstCli(page, col, row);
+  assert.deepEqual(mapHistory.page, mapHistory.cli, 'page and --pixel-history agree (shadowmap)');
+  assert.ok(mapHistory.page.some((s) => s.startsWith('lookup L0')), 'the lookups are listed: ' + mapHistory.page);
+  const mapWhy = await page.$$eval('#history .why', (p) => p.map((x) => x.textContent));
+  assert.ok(mapWhy.some((w) => w.includes('stored D')), 'the verdict reads the lookup: ' + mapWhy);
+  await page.screenshot({ path: path.join(shots, 'explore-page-history-shadowmap.png'), fullPage: true });
+  step(`shadowmap history at ${col},${mapHistory.y}: ${mapHistory.page.length} steps as printed; ${mapWhy[0]}`);
+
+  // The cube map's face with the camera frustum drawn: white lines on the map.
+  await page.select('#view', 'shadowmap');
+  await settle(page);
+  const outlines = await page.$$eval('#legend .outline', (s) => s.map((x) => x.textContent));
+  assert.deepEqual(outlines, ['camera frustum'], 'the map view names its outline');
+  await page.select('#view', 'frame');
+  await page.select('#method', 'zfail');
+  await settle(page);
+
+  // Drag the candle's marker: the light moves in the picture plane, and the picture is
+  // `shadowref render` with the moved light's -D value.
+  const marker = await page.evaluate(() => window.exploreLightMarker(0));
+  assert.ok(marker, 'the candle has a marker on the picture');
+  const markerBox = await imageBox(page);
+  await page.mouse.move(markerBox.x + marker.col, markerBox.y + marker.row);
+  await page.mouse.down();
+  for (let i = 1; i <= 5; i++) await page.mouse.move(markerBox.x + marker.col + 8 * i, markerBox.y + marker.row - 6 * i);
+  await page.mouse.up();
+  await settle(page);
+  const moved = await page.evaluate(() => window.exploreOverrides());
+  assert.ok(moved.some((o) => o.startsWith('lights.candle.position=')), 'dragging moves the light: ' + moved);
+  assert.ok(!moved.some((o) => o.startsWith('camera.')), 'dragging a marker does not orbit: ' + moved);
+  await pictureShot(page, 'explore-pumpkins-light-moved.png', true);
+  const movedShot = await pictureShot(page);
+  assert.deepEqual(await differingPixels(page, movedShot, cliRender(moved).png), { differing: 0, pixels: 800 * 640 },
+    'moved light vs shadowref render ' + moved.join(' '));
+  assert.ok((await differingPixels(page, movedShot, zfailStart)).differing > 1000, 'moving the light changed the picture');
+  step('dragged the light: ' + moved.join(' ') + '; equals shadowref render');
+  // Switched off: the scene without the light, as -D lights.candle=off renders it.
+  await page.click('#lights input[type=checkbox]');
+  await settle(page);
+  const off = await page.evaluate(() => window.exploreOverrides());
+  assert.ok(off.includes('lights.candle=off'), 'the check box switches the light off: ' + off);
+  assert.deepEqual(await differingPixels(page, await pictureShot(page), cliRender(off).png), { differing: 0, pixels: 800 * 640 },
+    'light off vs shadowref render ' + off.join(' '));
+  await page.click('#lights input[type=checkbox]');
+  await page.click('#reset');
+  await settle(page);
+  step('switched the light off and on: equals shadowref render');
 
   // Bad requests: a 400 with the reason, and the server keeps serving.
   const bad = await page.evaluate(async () => {
@@ -179,6 +296,66 @@ try {
   assert.equal(bad[bad.length - 1][1], 200);
   step('bad requests: ' + bad.slice(0, -1).map((b) => b[1]).join(' '));
   await page.close();
+
+  // TSM's maps with the camera frustum and the trapezoid; the sun turned with the direction
+  // sliders renders as `shadowref render` with its -D value.
+  const outdoor = await startExplorer(binary, ['scenes/outdoor.yaml']);
+  try {
+    const p4 = await browser.newPage();
+    p4.on('pageerror', (e) => { failed = true; console.error('outdoor page error:', e.message); });
+    await p4.goto(outdoor.url);
+    await waitForFrames(p4, 1);
+    await settle(p4);
+    assert.equal(await p4.$eval('#method', (s) => s.value), 'tsm');
+    await p4.select('#map-size', '256');
+    await p4.select('#view', 'shadowmap');
+    await settle(p4);
+    const maps = await p4.$$eval('#index option', (o) => o.map((x) => x.textContent));
+    const plain = maps.indexOf('L0.plain');
+    assert.ok(plain >= 0, 'TSM has an unwarped view: ' + maps);
+    await p4.select('#index', String(plain));
+    await settle(p4);
+    const lines = await p4.$$eval('#legend .outline', (s) => s.map((x) => x.textContent));
+    assert.deepEqual(lines, ['camera frustum', 'trapezoid']);
+    const plainShot = await pictureShot(p4, 'explore-outdoor-tsm-plain.png');
+    const mapState = await p4.evaluate(() => window.exploreOverrides());
+    cliRender(mapState, ['--dump', 'shadowmap'], 'scenes/outdoor.yaml');
+    const dumped = fs.readFileSync(path.join(scratch, 'cli.shadowmap-L0.plain.png'));
+    assert.deepEqual(await differingPixels(p4, plainShot, dumped, [256, 256]), { differing: 0, pixels: 256 * 256 },
+      'the page\'s map view is --dump shadowmap\'s picture');
+    const colours = await p4.evaluate(() => {
+      const c = document.getElementById('image');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let white = 0, red = 0;
+      for (let i = 0; i < d.length; i += 4) {
+        if (d[i] === 255 && d[i + 1] === 255 && d[i + 2] === 255) white += 1;
+        if (d[i] === 255 && d[i + 1] === 48 && d[i + 2] === 48) red += 1;
+      }
+      return { white, red };
+    });
+    assert.ok(colours.white > 50 && colours.red > 50, 'frustum and trapezoid drawn: ' + JSON.stringify(colours));
+    await p4.select('#index', String(maps.indexOf('L0')));
+    await settle(p4);
+    await pictureShot(p4, 'explore-outdoor-tsm-warped.png');
+    step(`TSM maps: frustum ${colours.white} px, trapezoid ${colours.red} px; equals --dump shadowmap`);
+
+    await p4.select('#view', 'frame');
+    await settle(p4);
+    const before = await pictureShot(p4);
+    await p4.$eval('#dx', (input) => { input.value = String(Number(input.value) + 0.3); input.dispatchEvent(new Event('input')); });
+    await settle(p4);
+    const turned = await p4.evaluate(() => window.exploreOverrides());
+    assert.ok(turned.some((o) => /^lights\.[^.]+\.direction=/.test(o)), 'the slider turns the sun: ' + turned);
+    const turnedShot = await pictureShot(p4);
+    const size = await p4.$eval('#image', (c) => c.width * c.height);
+    assert.deepEqual(await differingPixels(p4, turnedShot, cliRender(turned, [], 'scenes/outdoor.yaml').png), { differing: 0, pixels: size },
+      'turned sun vs shadowref render ' + turned.join(' '));
+    assert.ok((await differingPixels(p4, before, turnedShot)).differing > 100, 'turning the sun moved the shadows');
+    step('turned the sun: ' + turned.join(' ') + '; equals shadowref render');
+    await p4.close();
+  } finally {
+    assert.equal(await stopExplorer(outdoor, 'SIGTERM'), 0);
+  }
 
   // A scene that does not load: its file:line:col message on the page.
   const broken = path.join(scratch, 'broken.yaml');
