@@ -10,10 +10,11 @@ void addExploreCommand(CLI::App& app, explore::ExploreOptions& args) {
   CLI::App* cmd = app.add_subcommand(
       "explore",
       "Explore a scene live in the browser (a local web server): camera, lights, methods, views, pixel history");
-  cmd->footer("The page orbits, pans and zooms the camera, moves and switches lights, changes the method and its "
-              "settings, shows the frame, stencil counts, volumes, depth, shadow maps, visibility and every pass, and "
-              "a pixel's history on a click. Each state is a list of -D values: render with them writes the same "
-              "pixels. Ctrl-C or SIGTERM stops the server (exit 0).");
+  cmd->footer("The page orbits, pans and zooms the camera, moves lights (drag a light's marker, or sliders) and "
+              "switches them, changes the method and its settings, shows the frame, stencil counts, volumes, depth, "
+              "shadow maps (with the camera frustum and TSM's trapezoid), visibility and every pass, and on a click "
+              "a pixel's history as render --pixel-history prints it. Each state is a list of -D values: render "
+              "with them writes the same pixels. Ctrl-C or SIGTERM stops the server (exit 0).");
   cmd->add_option("scene", args.scene, "Scene file (YAML); omitted: the built-in room");
   cmd->add_option("-D", args.overrides, "Override a scene value, as for render; the page starts from them")
       ->take_all()
