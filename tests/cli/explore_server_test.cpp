@@ -10,17 +10,21 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <random>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
 
 #include "support/cli_run.h"
 
@@ -178,6 +182,81 @@ TEST_CASE("explore serves for a state the pixels render writes with the same -D 
     CHECK(differing == 0);
   }
   for (auto& [scene, server] : servers) CHECK(server->stop(SIGTERM) == 0);
+}
+
+TEST_CASE("explore's pixel history is render --pixel-history's, step for step", "[cli][explore]") {
+  // Two lights: with z-fail each light's volume pass opens with a stencil clear; with a shadow map
+  // each shaded fragment is followed by both lights' lookups. The server's JSON and the CLI's text
+  // must list the same clears, fragments and lookups in the same order with the same values.
+  const fs::path dir = testScratch() / "explore-history";
+  fs::create_directories(dir);
+  const std::vector<std::string> base{"image.width=64", "image.height=48"};
+  Server server({"scenes/two_lights.yaml", "-D", base[0], "-D", base[1]});
+  httplib::Client client("127.0.0.1", server.port());
+  client.set_read_timeout(120);
+  const std::regex clearLine(R"(^  clear(?:  stencil (\d+) -> (\d+))?)");
+  const std::regex drawLine(R"(^  draw (\d+) .*  (front|back)  z=.*stencil test (pass|FAIL)  depth test (pass|FAIL|-)  stencil (\d+) -> (\d+))");
+  const std::regex lookupLine(R"(^      lookup light (L\d+) .*?(?:texel \((\d+), (\d+)\).*)?result (\S+)$)");
+  for (const std::string method : {"zfail", "shadowmap"}) {
+    for (const char* pixel : {"32,20", "20,10", "50,30"}) {
+      INFO(method << " pixel " << pixel);
+      std::string px = pixel;
+      const std::string x = px.substr(0, px.find(',')), y = px.substr(px.find(',') + 1);
+      const auto cli = runShadowref(renderArgs("scenes/two_lights.yaml", {base[0], base[1], "shadow.method=" + method},
+                                                 dir / "o.png") + " --pixel-history " + pixel);
+      REQUIRE(cli.status == 0);
+      std::vector<std::string> expected;
+      std::istringstream lines(cli.out);
+      for (std::string line; std::getline(lines, line);) {
+        std::smatch m;
+        if (std::regex_search(line, m, clearLine))
+          expected.push_back("clear " + (m[1].matched ? m[1].str() + ">" + m[2].str() : std::string("-")));
+        else if (std::regex_search(line, m, drawLine))
+          expected.push_back("draw " + m[1].str() + " " + m[2].str() + " " + m[3].str() + " " + m[4].str() + " " +
+                             m[5].str() + ">" + m[6].str());
+        else if (std::regex_search(line, m, lookupLine))
+          expected.push_back("lookup " + m[1].str() + " " + (m[2].matched ? m[2].str() + "," + m[3].str() : "-") + " " +
+                             std::to_string(std::stod(m[4].str())));
+      }
+      const httplib::Result r = client.Get("/api/history?" + query({"shadow.method=" + method}, "x=" + x + "&y=" + y));
+      REQUIRE(r);
+      REQUIRE(r->status == 200);
+      const nlohmann::json h = nlohmann::json::parse(r->body);
+      std::vector<std::string> served;
+      for (const nlohmann::json& s : h["steps"]) {
+        if (s["type"] == "clear") {
+          served.push_back("clear " + (s["stencil"].is_null() ? std::string("-")
+                                                              : std::to_string(s["stencil"][0].get<int>()) + ">" +
+                                                                    std::to_string(s["stencil"][1].get<int>())));
+          continue;
+        }
+        const auto test = [](const nlohmann::json& v) { return v.is_null() ? std::string("-") : v.get<bool>() ? "pass" : "FAIL"; };
+        served.push_back("draw " + std::to_string(s["draw"].get<int>()) + " " + s["facing"].get<std::string>() + " " +
+                         test(s["stencilTest"]) + " " + test(s["depthTest"]) + " " +
+                         std::to_string(s["stencilBefore"].get<int>()) + ">" + std::to_string(s["stencilAfter"].get<int>()));
+        for (const nlohmann::json& l : s.value("lookups", nlohmann::json::array()))
+          served.push_back("lookup " + l["light"].get<std::string>() + " " +
+                           (l.contains("texel") ? std::to_string(l["texel"][0].get<int>()) + "," +
+                                                      std::to_string(l["texel"][1].get<int>())
+                                                : std::string("-")) +
+                           " " + std::to_string(l["result"].get<double>()));
+      }
+      CHECK(served == expected);
+      CHECK(h["fragments"].get<size_t>() == size_t(std::count_if(expected.begin(), expected.end(),
+                                                               [](const std::string& e) { return e.starts_with("draw"); })));
+      const auto has = [&](const std::string& prefix) {
+        return std::any_of(served.begin(), served.end(), [&](const std::string& e) { return e.starts_with(prefix); });
+      };
+      if (method == "zfail")  // one stencil clear before each light's volumes
+        CHECK(std::count_if(served.begin(), served.end(),
+                            [](const std::string& e) { return e.starts_with("clear ") && e != "clear -"; }) == 2);
+      if (method == "shadowmap") {
+        CHECK(has("lookup L0"));
+        CHECK(has("lookup L1"));
+      }
+    }
+  }
+  CHECK(server.stop(SIGTERM) == 0);
 }
 
 TEST_CASE("explore answers bad requests with 400 and a reason, and keeps serving", "[cli][explore]") {
