@@ -276,6 +276,11 @@ function walk(step) {
 // views::PixelHistory (the one `shadowref render --pixel-history` prints), and why the pixel is
 // what it is
 async function history(p) {
+  if (state.view === 'shadowmap') {  // a texel of the light's map, not a pixel of the frame
+    $('history').textContent = 'A shadow map shows the light\'s view: click a pixel of a camera view (frame, stencil, depth ...) ' +
+      'for its history; its lookups name the texels they read.';
+    return;
+  }
   $('history').textContent = 'rendering the history of pixel ' + p.x + ',' + p.y + ' ...';
   const params = { x: p.x, y: p.y };
   if (state.signed) params.signed = 1;
