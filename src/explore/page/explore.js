@@ -293,7 +293,8 @@ const lightLabel = (s) => s.light ? s.light + (s.lightName ? " '" + s.lightName 
 
 function lookupText(l) {
   let text = 'lookup ' + l.light + " '" + l.lightName + "'" + (l.face !== undefined ? ' cube face ' + l.face : '') +
-    ': s,t,r (' + l.str.map((v) => Number(v.toPrecision(6))).join(', ') + ')';
+    ': strq (' + l.strq.map((v) => Number(v.toPrecision(6))).join(', ') + ')  s,t,r (' +
+    l.str.map((v) => Number(v.toPrecision(6))).join(', ') + ')';
   if (l.texel) {
     text += '  texel (' + l.texel.join(', ') + ') of ' + l.mapSize.join('x') + '  stored D ' + Number(l.stored.toPrecision(9)) +
       '  compared r ' + Number(l.compared.toPrecision(9)) + (l.passed ? ' <= D: lit' : ' > D: shadowed');
