@@ -6,7 +6,6 @@
 
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
@@ -20,15 +19,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using shadowref::testing::runShadowref;
+using shadowref::testing::slurp;
 
 const fs::path kRoot = SHADOWREF_SOURCE_DIR;
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::vector<fs::path> pages() {
   std::vector<fs::path> out = {kRoot / "README.md", kRoot / "golden" / "README.md"};
@@ -87,7 +80,7 @@ std::set<std::string> anchorsOf(const fs::path& page) {
   static const std::regex heading(R"(^#{1,6}\s+(.*?)\s*$)");
   std::set<std::string> anchors;
   std::map<std::string, int> seen;
-  for (const std::string& line : proseLines(readFile(page))) {
+  for (const std::string& line : proseLines(slurp(page))) {
     std::smatch m;
     if (!std::regex_match(line, m, heading)) continue;
     const std::string a = anchorOf(m[1].str());
@@ -114,7 +107,7 @@ TEST_CASE("documentation: every relative link names a file, and every #anchor a 
   std::map<fs::path, std::set<std::string>> headings;
   for (const fs::path& page : pages()) {
     REQUIRE(fs::exists(page));
-    const std::vector<std::string> lines = proseLines(readFile(page));
+    const std::vector<std::string> lines = proseLines(slurp(page));
     for (size_t n = 0; n < lines.size(); ++n) {
       for (auto it = std::sregex_iterator(lines[n].begin(), lines[n].end(), link); it != std::sregex_iterator(); ++it) {
         const std::string target = (*it)[1].str();
@@ -142,7 +135,7 @@ TEST_CASE("documentation: every relative link names a file, and every #anchor a 
 
 TEST_CASE("documentation: every option of shadowref and its subcommands is documented", "[docs][cli]") {
   std::string documented;
-  for (const fs::path& page : pages()) documented += readFile(page);
+  for (const fs::path& page : pages()) documented += slurp(page);
   // Written as a whole word: `--dump` does not document `--dump-region`.
   const auto isDocumented = [&](const std::string& option) {
     for (size_t at = documented.find(option); at != std::string::npos; at = documented.find(option, at + 1)) {
