@@ -31,6 +31,7 @@
 #include "shadow/scene_view.h"
 #include "shadow/shadow_map_accuracy.h"
 #include "oracle/oracle.h"
+#include "oracle/visibility_comparison.h"
 
 namespace shadowref::bench {
 
@@ -75,36 +76,15 @@ Scene load(const SceneCase& c, const std::vector<std::string>& extra) {
   return loadScene(std::string(SHADOWREF_SOURCE_DIR) + "/scenes/" + c.file + ".yaml", options);
 }
 
-// The pixels to compare: every hit, inside the cone for a spot light.
-std::vector<uint8_t> comparedPixels(const oracle::OracleImage& o, const Light& light) {
-  std::vector<uint8_t> mask = o.hitMask;
-  if (light.type != LightType::Spot) return mask;
-  const double cosCutoff = std::cos(light.spotCutoffDegrees * M_PI / 180.0);
-  for (size_t i = 0; i < mask.size(); ++i)
-    if (mask[i] && glm::dot(glm::normalize(o.hitPoint[i] - light.position), glm::normalize(light.direction)) < cosCutoff)
-      mask[i] = 0;
-  return mask;
-}
-
 void writeErrorImage(const LightShadow& shadow, const oracle::OracleImage& o, const std::vector<uint8_t>& mask,
                      const std::string& path) {
   Image8 img;
   img.width = o.width;
   img.height = o.height;
   img.channels = 3;
-  img.pixels.assign(size_t(o.width) * size_t(o.height) * 3, 0);
-  for (int y = 0; y < o.height; ++y)
-    for (int x = 0; x < o.width; ++x) {
-      const size_t i = o.index(x, y);
-      uint8_t* px = &img.pixels[(size_t(o.height - 1 - y) * size_t(o.width) + size_t(x)) * 3];
-      if (!mask[i]) continue;
-      const bool shadowed = shadow.factor(o.hitPoint[i]) < 1.0;
-      const bool visible = o.lit[i] != 0;
-      const uint8_t grey = visible ? 200 : 90;
-      px[0] = px[1] = px[2] = grey;
-      if (shadowed && visible) px[0] = 255, px[1] = 0, px[2] = 0;
-      if (!shadowed && !visible) px[0] = 0, px[1] = 64, px[2] = 255;
-    }
+  img.pixels = oracle::compareVisibility(
+                   o, mask, [&](size_t i) { return !(shadow.factor(o.hitPoint[i]) < 1.0); }, /*paleNearEdges=*/false)
+                   .errorMap;
   writePng8(img, path);
 }
 
@@ -167,7 +147,7 @@ int run(int argc, char** argv) {
     const Light& light = base.lights.at(0);
     oracle::OracleOptions oo;
     const oracle::OracleImage o = oracle::castOracle(base, light, oo);
-    const std::vector<uint8_t> mask = comparedPixels(o, light);
+    const std::vector<uint8_t> mask = oracle::comparedPixels(o, light);
     if (!images.empty()) writeOracleImage(o, mask, images + "/" + sc.name + "-oracle.png");
     for (const char* method : {"shadowmap", "tsm"}) {
       const bool trapezoidal = std::string(method) == "tsm";

@@ -85,25 +85,11 @@ class Scene:
         self._source = source
         self.overrides: list = list(overrides)
 
-    @property
-    def width(self) -> int:
-        """The image width in pixels."""
-        return self._native.width
-
-    @property
-    def height(self) -> int:
-        """The image height in pixels."""
-        return self._native.height
-
-    @property
-    def method(self) -> str:
-        """The scene's shadow.method."""
-        return self._native.method
-
-    @property
-    def lights(self) -> list:
-        """The names of the scene's lights, in order."""
-        return self._native.lights
+    # Read-only views of the native scene's attributes (types in __init__.pyi).
+    width = property(lambda self: self._native.width, doc="The image width in pixels.")
+    height = property(lambda self: self._native.height, doc="The image height in pixels.")
+    method = property(lambda self: self._native.method, doc="The scene's shadow.method.")
+    lights = property(lambda self: self._native.lights, doc="The names of the scene's lights, in order.")
 
     def with_overrides(self, overrides) -> "Scene":
         """The same source loaded again with these overrides after the ones it has."""
@@ -137,6 +123,18 @@ def loads(text: str, name: str = "<string>", overrides=None) -> Scene:
     """Loads a scene from YAML text; ``name`` is the file name its error messages give."""
     words = _override_words(overrides)
     return Scene(_native(_shadowref.NativeScene.from_string, text, name, words), ("string", text, name), words)
+
+
+def _scene_with(scene, overrides, size) -> Scene:
+    """The Scene that render and oracle work on: ``scene`` (a Scene, a path or a dict) with the
+    overrides and (width, height) ``size`` applied after its own."""
+    words = _override_words(overrides)
+    if size is not None:
+        width, height = size
+        words += [f"image.width={int(width)}", f"image.height={int(height)}"]
+    if isinstance(scene, Scene):
+        return scene.with_overrides(words) if words else scene
+    return load(scene, words)
 
 
 class FragmentRecord:
@@ -220,15 +218,7 @@ def render(scene: Union[Scene, str, os.PathLike, Mapping[str, Any]], method: Opt
 
     The GIL is released while it renders: other threads may run, or render too.
     """
-    words = _override_words(overrides)
-    if size is not None:
-        width, height = size
-        words += [f"image.width={int(width)}", f"image.height={int(height)}"]
-    if isinstance(scene, Scene):
-        if words:
-            scene = scene.with_overrides(words)
-    else:
-        scene = load(scene, words)
+    scene = _scene_with(scene, overrides, size)
     xy = None if history is None else (int(history[0]), int(history[1]))
     values = _native(_shadowref.render, scene._native, method or "", pipeline, int(threads), bool(stencil_per_light),
                      bool(visibility), bool(shadow_maps), xy)
@@ -257,14 +247,7 @@ def oracle(scene: Union[Scene, str, os.PathLike, Mapping[str, Any]], light: Unio
     Compare with a frame: ``(frame.visibility[name] == oracle.lit)[oracle.near_edge == 0]``.
     Releases the GIL while it casts.
     """
-    words = _override_words(overrides)
-    if size is not None:
-        words += [f"image.width={int(size[0])}", f"image.height={int(size[1])}"]
-    if isinstance(scene, Scene):
-        if words:
-            scene = scene.with_overrides(words)
-    else:
-        scene = load(scene, words)
+    scene = _scene_with(scene, overrides, size)
     if isinstance(light, str):
         if light not in scene.lights:
             raise SceneError(f"oracle: no light named '{light}' (the scene has {', '.join(scene.lights)})")

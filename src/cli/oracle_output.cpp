@@ -8,28 +8,13 @@
 #include "gl/pipeline.h"
 #include "image/image_writer.h"
 #include "oracle/oracle.h"
+#include "oracle/visibility_comparison.h"
 #include "shadow/light_shadow.h"
 #include "shadow/scene_view.h"
 #include "shadow/shadow_map_accuracy.h"
 #include "shadow/technique.h"
 
 namespace shadowref::cli {
-
-namespace {
-
-// The pixels to compare: every hit, and for a spot light only those inside its cone (outside it
-// nothing is lit to be shadowed) — as bench/shadow_map_accuracy counts them.
-std::vector<uint8_t> comparedPixels(const oracle::OracleImage& o, const Light& light) {
-  std::vector<uint8_t> mask = o.hitMask;
-  if (light.type != LightType::Spot) return mask;
-  const double cosCutoff = std::cos(light.spotCutoffDegrees * M_PI / 180.0);
-  for (size_t i = 0; i < mask.size(); ++i)
-    if (mask[i] && glm::dot(glm::normalize(o.hitPoint[i] - light.position), glm::normalize(light.direction)) < cosCutoff)
-      mask[i] = 0;
-  return mask;
-}
-
-}  // namespace
 
 std::vector<OracleLightFigures> writeOracleOutputs(const Scene& scene, const std::string& method,
                                                    const FrameResult& frame,
@@ -47,39 +32,21 @@ std::vector<OracleLightFigures> writeOracleOutputs(const Scene& scene, const std
   for (size_t l = 0; l < scene.lights.size(); ++l) {
     const Light& light = scene.lights[l];
     const oracle::OracleImage o = oracle::castOracle(scene, light, options);
-    const std::vector<uint8_t> mask = comparedPixels(o, light);
+    const std::vector<uint8_t> mask = oracle::comparedPixels(o, light);
     const std::vector<float>& rendered = frame.visibility[l];
+    // A PCF or soft fraction below 1 counts as shadow, as the shadow test's factor < 1 does.
+    oracle::VisibilityComparison c = oracle::compareVisibility(
+        o, mask, [&](size_t i) { return rendered[i] >= 1.0f; }, /*paleNearEdges=*/true);
     OracleLightFigures f;
+    static_cast<oracle::VisibilityCounts&>(f) = c.counts;
     std::vector<float> traced(size_t(w) * size_t(h), 1.0f);
+    for (size_t i = 0; i < traced.size(); ++i)
+      if (o.hitMask[i]) traced[i] = o.lit[i] ? 1.0f : 0.0f;
     Image8 errors;
     errors.width = w;
     errors.height = h;
     errors.channels = 3;
-    errors.pixels.assign(size_t(w) * size_t(h) * 3, 0);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const size_t i = o.index(x, y);
-        if (o.hitMask[i]) traced[i] = o.lit[i] ? 1.0f : 0.0f;
-        if (!mask[i]) continue;
-        ++f.compared;
-        const bool renderedLit = rendered[i] >= 1.0f;
-        const bool tracedLit = o.lit[i] != 0;
-        uint8_t* px = &errors.pixels[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 3];
-        if (renderedLit == tracedLit) {
-          ++f.agree;
-          px[0] = px[1] = px[2] = tracedLit ? 200 : 90;
-          continue;
-        }
-        const bool edge = o.nearEdge[i] != 0;
-        ++(edge ? f.nearEdge : f.elsewhere);
-        if (tracedLit) {
-          ++f.falseShadow;
-          px[0] = 255, px[1] = edge ? 160 : 0, px[2] = edge ? 160 : 0;
-        } else {
-          ++f.missedShadow;
-          px[0] = edge ? 150 : 0, px[1] = edge ? 180 : 64, px[2] = 255;
-        }
-      }
+    errors.pixels = std::move(c.errorMap);
     if (mapMethod) {
       // The accuracy table's measure: the map built as a frame builds it, tested at the oracle's
       // surface points instead of the rasterized ones.

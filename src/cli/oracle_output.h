@@ -10,23 +10,19 @@
 #include <string>
 #include <vector>
 
+#include "oracle/visibility_comparison.h"
 #include "scene/scene.h"
 #include "shadow/frame_renderer.h"
 
 namespace shadowref::cli {
 
-struct OracleLightFigures {
-  size_t compared = 0;      // pixels whose primary ray hits, inside a spot light's cone
-  size_t agree = 0;         // the rendered and the ray-traced visibility say the same
-  size_t falseShadow = 0;   // rendered in shadow (visibility < 1), the light sees the point
-  size_t missedShadow = 0;  // rendered lit (visibility 1), the light does not see it
-  size_t nearEdge = 0;      // differing pixels the oracle marks as near an edge (oracle.h)
-  size_t elsewhere = 0;     // the other differing pixels
+// The rendered visibility against the oracle's (oracle::compareVisibility): compared counts the
+// pixels whose primary ray hits, inside a spot light's cone; a visibility below 1 is shadow.
+struct OracleLightFigures : oracle::VisibilityCounts {
   // The shadow-map methods: the map's own test at the oracle's hit points (countShadowErrors),
   // bench/shadow_map_accuracy's figure; points == 0 for the other methods.
   size_t mapPoints = 0, mapFalseShadow = 0, mapMissedShadow = 0;
 
-  double agreePercent() const { return compared ? 100.0 * double(agree) / double(compared) : 100.0; }
   double mapWrongPercent() const {
     return mapPoints ? 100.0 * double(mapFalseShadow + mapMissedShadow) / double(mapPoints) : 0.0;
   }

@@ -93,10 +93,12 @@ uint32_t TriangleBvh::build(uint32_t first, uint32_t count) {
   return index;
 }
 
-RayHit TriangleBvh::firstHit(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const {
-  RayHit best;
-  if (nodes_.empty()) return best;
-  const BvhTriangle* bestTri = nullptr;
+// One traversal for both queries, left child first. firstHit's visit lowers tMax to the nearest
+// hit so far, so the boxes still on the stack are tested against the shorter ray.
+template <class Visit>
+void TriangleBvh::traverse(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, const double& tMax,
+                           Visit&& visit) const {
+  if (nodes_.empty()) return;
   std::vector<uint32_t> stack{0};
   while (!stack.empty()) {
     const Node& n = nodes_[stack.back()];
@@ -107,38 +109,35 @@ RayHit TriangleBvh::firstHit(const glm::dvec3& origin, const glm::dvec3& directi
       stack.push_back(n.left);
       continue;
     }
-    for (uint32_t i = n.first; i < n.first + n.count; ++i) {
-      double t = 0.0;
-      const BvhTriangle& tri = triangles_[i];
-      if (tri.backCulled && glm::dot(glm::cross(tri.b - tri.a, tri.c - tri.a), direction) >= 0.0) continue;
-      if (!intersectTriangle(tri, origin, direction, tMin, tMax, t)) continue;
-      if (bestTri && (t > best.t || (t == best.t && !closerTie(tri, *bestTri)))) continue;
-      best = RayHit{t, tri.instance, tri.triangle};
-      bestTri = &tri;
-      tMax = t;
-    }
+    for (uint32_t i = n.first; i < n.first + n.count; ++i)
+      if (visit(triangles_[i])) return;
   }
+}
+
+RayHit TriangleBvh::firstHit(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const {
+  RayHit best;
+  const BvhTriangle* bestTri = nullptr;
+  traverse(origin, direction, tMin, tMax, [&](const BvhTriangle& tri) {
+    double t = 0.0;
+    if (tri.backCulled && glm::dot(glm::cross(tri.b - tri.a, tri.c - tri.a), direction) >= 0.0) return false;
+    if (!intersectTriangle(tri, origin, direction, tMin, tMax, t)) return false;
+    if (bestTri && (t > best.t || (t == best.t && !closerTie(tri, *bestTri)))) return false;
+    best = RayHit{t, tri.instance, tri.triangle};
+    bestTri = &tri;
+    tMax = t;
+    return false;
+  });
   return best;
 }
 
 bool TriangleBvh::anyHit(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const {
-  if (nodes_.empty()) return false;
-  std::vector<uint32_t> stack{0};
-  while (!stack.empty()) {
-    const Node& n = nodes_[stack.back()];
-    stack.pop_back();
-    if (!hitsBox(n.bounds, origin, direction, tMin, tMax)) continue;
-    if (n.count == 0) {
-      stack.push_back(n.right);
-      stack.push_back(n.left);
-      continue;
-    }
-    for (uint32_t i = n.first; i < n.first + n.count; ++i) {
-      double t = 0.0;
-      if (intersectTriangle(triangles_[i], origin, direction, tMin, tMax, t)) return true;
-    }
-  }
-  return false;
+  bool hit = false;
+  traverse(origin, direction, tMin, tMax, [&](const BvhTriangle& tri) {
+    double t = 0.0;
+    hit = intersectTriangle(tri, origin, direction, tMin, tMax, t);
+    return hit;
+  });
+  return hit;
 }
 
 }  // namespace shadowref::oracle

@@ -53,6 +53,11 @@ class TriangleBvh {
     uint32_t left = 0, right = 0;   // inner node: children
   };
   uint32_t build(uint32_t first, uint32_t count);
+  // Calls visit(triangle) for the triangles of every leaf whose box the ray meets within
+  // [tMin, tMax], reading tMax afresh at each box; stops when visit returns true.
+  template <class Visit>
+  void traverse(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, const double& tMax,
+                Visit&& visit) const;
 
   std::vector<BvhTriangle> triangles_;
   std::vector<Node> nodes_;

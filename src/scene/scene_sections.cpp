@@ -103,7 +103,13 @@ const std::vector<Field<Light>>& softFields() {
 
 const std::vector<Field<Light>>& lightFields() {
   static const std::vector<Field<Light>> fields{
-      {"name", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) { l.name = readText(v, p); }},
+      // A '.' would split the name in a -D key; the file's names are checked as the list is read,
+      // this catches a -D that renames a light.
+      {"name", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
+         l.name = readText(v, p);
+         if (l.name.find('.') != std::string::npos)
+           failAt(v.at, p + ": the name '" + l.name + "' must not contain '.' (it separates names in -D keys)");
+       }},
       {"type", [](const YamlValue& v, Light& l, const std::string& p, Provenance&) {
          l.type = readEnum(v, p, lightTypeNames());
        }},

@@ -7,6 +7,7 @@
 //       the page's text quotes TEXT from the output, or LINE as a whole line of it;
 //   <!-- docs-test: let S = VALUE -->
 //       later commands on the page say $S for VALUE.
+// After the command, 'status: N' says it exits with N (default 0), e.g. compare's WARNING (1).
 //
 // This test runs every marked command (from a scratch folder holding a link to scenes/, so that
 // output files land there) and checks that each quoted line and each LINE is a line of the output
@@ -99,6 +100,7 @@ struct Check {
   std::string command;  // as on the page ($S and all)
   std::vector<std::string> quoted;  // lines that must each be a line of the output (squeezed)
   std::vector<std::string> texts;   // texts that must each appear in the output (squeezed)
+  int status = 0;                   // the exit status the command must end with
 };
 
 // The checks a page's markers ask for. Malformed markers are reported as failures, not skipped.
@@ -137,10 +139,13 @@ std::vector<Check> checksOf(const fs::path& page, std::map<std::string, std::str
         c.texts.push_back(squeezed(parts[k].substr(8)));
       else if (parts[k].rfind("line: ", 0) == 0)
         c.quoted.push_back(squeezed(parts[k].substr(6)));
+      else if (parts[k].rfind("status: ", 0) == 0 && std::regex_match(trimmed(parts[k].substr(8)), std::regex("[0-9]{1,3}")))
+        c.status = std::stoi(parts[k].substr(8));
       else
-        errors.push_back(where + ": after the command, each part must be 'expect: TEXT' or 'line: LINE'");
+        errors.push_back(where + ": after the command, each part must be 'expect: TEXT', 'line: LINE' or 'status: N'");
     }
-    if (parts.size() == 1) {  // the next fenced block quotes the output
+    const bool quotesInline = !c.texts.empty() || !c.quoted.empty();
+    if (!quotesInline) {  // the next fenced block quotes the output
       size_t j = i + 1;
       while (j < lines.size() && trimmed(lines[j]).empty()) ++j;
       if (j == lines.size() || lines[j].rfind("```", 0) != 0) {
@@ -159,7 +164,7 @@ std::vector<Check> checksOf(const fs::path& page, std::map<std::string, std::str
     // The numbers an 'expect:' or 'line:' checks are the ones the page's text quotes: each must
     // appear on the page outside the markers, or the marker could be updated and the text not.
     for (const std::vector<std::string>* list : {&c.texts, &c.quoted}) {
-      if (list == &c.quoted && parts.size() == 1) break;  // a fenced block is the quote itself
+      if (list == &c.quoted && !quotesInline) break;  // a fenced block is the quote itself
       for (const std::string& t : *list)
         for (auto it = std::sregex_iterator(t.begin(), t.end(), kNumber); it != std::sregex_iterator(); ++it) {
           const std::string number = it->str();
@@ -224,7 +229,7 @@ TEST_CASE("the output README.md and docs/ quote is what the commands print", "[c
       if (!ran.count(command)) ran[command] = runCommand(command);
       const Output& out = ran[command];
       INFO(c.where << ": " << command << "\n" << out.text);
-      CHECK(out.status == 0);
+      CHECK(out.status == c.status);
       std::vector<std::string> outLines;
       for (const std::string& l : linesOf(out.text)) outLines.push_back(squeezed(l));
       const std::string all = squeezed(out.text);

@@ -1,4 +1,5 @@
-// Citations in the code resolve: every key in square brackets that src/, support/, tests/ and bench/ cite —
+// Citations resolve: every key in square brackets that src/, support/, tests/, bench/ and the
+// documentation (README.md, docs/) cite —
 // an author and a year, "GL 2.1", "SV slides" or "DSS article", optionally followed by ", §x.y" —
 // has an entry "**[Key]**" in docs/references.md; and nothing cites what a reader of the
 // repository cannot open (the project's planning files, issue numbers, the source documents by
@@ -27,11 +28,12 @@ std::string readFile(const fs::path& p) {
   return s.str();
 }
 
-// The text files of src/, support/, tests/, bench/ and the scenes users start from (not
-// bench/results/: recorded runs, kept as printed; not node_modules/: installed npm packages).
+// The text files of src/, support/, tests/, bench/, the scenes users start from and the
+// documentation (not bench/results/: recorded runs, kept as printed; not node_modules/: installed
+// npm packages).
 std::vector<fs::path> sourceFiles() {
-  std::vector<fs::path> out;
-  for (const char* dir : {"src", "support", "tests", "bench", "scenes"}) {
+  std::vector<fs::path> out = {kRoot / "README.md", kRoot / "golden" / "README.md"};
+  for (const char* dir : {"src", "support", "tests", "bench", "scenes", "docs"}) {
     for (auto it = fs::recursive_directory_iterator(kRoot / dir); it != fs::recursive_directory_iterator(); ++it) {
       // tests/browser/node_modules: npm's copy of others' packages (npm ci), not this project's text.
       if (it->is_directory() && (it->path() == kRoot / "bench" / "results" || it->path().filename() == "node_modules")) {
@@ -79,7 +81,7 @@ TEST_CASE("citation keys: the scanner finds keys with and without a locator, and
         std::set<std::string>{"Kuhn 2016", "GL 2.1"});
 }
 
-TEST_CASE("citation keys: every key cited in src/, tests/ and bench/ has an entry in docs/references.md", "[docs]") {
+TEST_CASE("citation keys: every key cited in the code and the documentation has an entry in docs/references.md", "[docs]") {
   const fs::path referencesFile = kRoot / "docs" / "references.md";
   REQUIRE(fs::exists(referencesFile));
   const std::set<std::string> defined = definedKeys(readFile(referencesFile));
@@ -109,7 +111,7 @@ TEST_CASE("citation keys: every key cited in src/, tests/ and bench/ has an entr
   }
 }
 
-TEST_CASE("citation keys: src/, tests/ and bench/ cite nothing a reader cannot open", "[docs]") {
+TEST_CASE("citation keys: the code and the documentation cite nothing a reader cannot open", "[docs]") {
   // Built from pieces, so that this file does not match its own patterns.
   const std::string md = ".md";
   const std::vector<std::pair<std::string, std::regex>> forbidden = {

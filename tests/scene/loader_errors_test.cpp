@@ -255,6 +255,16 @@ TEST_CASE("a -D override with an unknown key is reported on the command line", "
   CHECK_THAT(yamlErrorOf(kBoxScene, o), StartsWith("<command line>:1:12: -D camera.eye.x: expected a key like camera.near"));
 }
 
+TEST_CASE("a -D that renames a light to a name with '.' is an error at the value, as in the file", "[loader]") {
+  const std::string scene = kBoxScene + "lights:\n  - {name: bulb}\n";
+  LoadOptions o;
+  o.overrides = {"lights.0.name=a.b"};
+  CHECK_THAT(yamlErrorOf(scene, o), StartsWith("<command line>:1:15: lights.0.name: the name 'a.b' must not contain '.'"));
+  o.overrides = {"lights.bulb.name=lamp"};
+  CHECK(yamlErrorOf(scene, o) == "(no error)");
+  CHECK_THAT(yamlErrorOf(kBoxScene + "lights:\n  - {name: a.b}\n"), Contains("the name 'a.b' must not contain '.'"));
+}
+
 // The shadow technique's names are the registry's (src/shadow), which the scene library does not
 // know: the loader keeps the name and where it was written, and the registry reports an unknown
 // one there (tests/shadow/technique_registry_test.cpp checks the messages).
