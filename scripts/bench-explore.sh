@@ -3,7 +3,7 @@
 # for SECONDS and prints frames shown per second, the server's time per frame and the latency from
 # input to image (tests/browser/explore_bench.mjs). Needs scripts/setup.sh --role test (Chromium,
 # tests/browser/node_modules) and a built CLI.
-#   scripts/bench-explore.sh [BUILD_DIR] [SECONDS] [SCENE...]   (defaults: build, 10, pumpkins and room)
+#   scripts/bench-explore.sh [BUILD_DIR] [SECONDS] [SCENE...]   (defaults: build, 10, room, pumpkins and city)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${1:-build}
