@@ -71,7 +71,7 @@ function showError(text) {
 // however many mouse moves arrive meanwhile, the next request asks for the newest state, and a
 // frame older than the one shown is dropped.
 let waiting = false;    // a request whose answer has not arrived
-let decoding = 0;       // answers being received, decoded and drawn
+let decoding = 0;       // answers being received, decoded and drawn, or waiting to be
 const kMaxDecoding = 2;  // more would only queue behind the decoder
 let dirty = false, version = 0, shownVersion = 0;
 let statusShown = -Infinity;  // when the server's time was last written under the title
@@ -123,10 +123,18 @@ async function decodePng(response) {
   }
 }
 
-async function receive(asked, response) {
+// Answers are decoded and drawn one after the other, in the order they were asked for: decoded
+// side by side, a later frame could be ready first and the earlier one, rendered for nothing,
+// would be dropped.
+let decoded = Promise.resolve();
+function receive(asked, response) {
   waiting = false;
   decoding += 1;
   pump();  // the newest state renders while this frame is decoded and drawn
+  decoded = decoded.then(() => show(asked, response));
+}
+
+async function show(asked, response) {
   try {
     if (response.status === 204 || asked < shownVersion) {
       exploreStats.superseded += 1;  // a newer state was asked for, or is shown already
