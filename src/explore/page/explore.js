@@ -9,7 +9,7 @@
 const $ = (id) => document.getElementById(id);
 const exported = window.SHADOWREF_EXPORT || null;
 
-// Figures for the benchmark and the browser test (bench/explore/bench.mjs, tests/browser/).
+// Figures for the benchmark and the browser test (tests/browser/explore_bench.mjs, explore.test.mjs).
 const exploreStats = { framesShown: 0, serverMs: [], encodeMs: [], latencyMs: [], errors: 0, superseded: 0 };
 window.exploreStats = exploreStats;
 
@@ -110,8 +110,8 @@ function pump() {
 
 // A PNG frame as a picture to draw, decoded off the page's thread and as stored (no colour
 // conversion), so that the canvas holds the rendered bytes. ImageDecoder takes the bytes as they
-// are; a Blob for createImageBitmap (browsers without ImageDecoder) is first handed to the browser
-// process, which costs Chromium about a tenth more CPU per frame.
+// are; a Blob for createImageBitmap (browsers without ImageDecoder) is first handed to Chromium's
+// browser process, a few milliseconds more CPU per frame.
 async function decodePng(response) {
   if (typeof ImageDecoder === 'undefined')
     return createImageBitmap(await response.blob(), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
