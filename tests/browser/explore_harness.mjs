@@ -33,12 +33,16 @@ export async function stopExplorer(server, signal = 'SIGINT') {
   return code;
 }
 
-export async function launchBrowser() {
+// `options` go to puppeteer.launch (the benchmark passes networkEnabled: false: with DevTools'
+// network domain on, Chromium keeps a copy of every response for the inspector, which no user's
+// browser does).
+export async function launchBrowser(options = {}) {
   return puppeteer.launch({
     executablePath: chromiumPath,
     headless: true,
     args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage', '--force-color-profile=srgb'],
     defaultViewport: { width: 1200, height: 1000, deviceScaleFactor: 1 },
+    ...options,
   });
 }
 

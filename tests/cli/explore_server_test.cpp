@@ -171,6 +171,14 @@ TEST_CASE("explore serves for a state the pixels render writes with the same -D 
     client.set_read_timeout(120);
     int w = 0, h = 0, cw = 0, ch = 0;
     const std::vector<uint8_t> served = servedRgb(client, c.overrides, w, h);
+    // The PNG the page asks for holds the same bytes (the page draws it without colour conversion).
+    const httplib::Result asPng = client.Get("/api/frame?" + query(c.overrides, "view=frame&encoding=png"));
+    REQUIRE(asPng);
+    REQUIRE(asPng->status == 200);
+    CHECK(asPng->get_header_value("Content-Type") == "image/png");
+    std::ofstream(dir / "served.png", std::ios::binary) << asPng->body;
+    int pw = 0, ph = 0;
+    CHECK(pngRgb(dir / "served.png", pw, ph) == served);
     const fs::path png = dir / "cli.png";
     const shadowref::testing::CliRun run = runShadowref(renderArgs(c.scene, c.overrides, png));
     REQUIRE(run.status == 0);

@@ -1,16 +1,16 @@
 // The explorer's page. Every state is a list of `-D key=value` overrides, exactly as
 // `shadowref render` takes them: the server renders the state, and the same -D values on the
-// command line give the same picture. At most two frame requests are in flight (the server renders
-// one while the other's pixels travel); input that arrives meanwhile only marks the state as
-// changed, so the newest state is rendered next, no stale frame queues up, and a frame older than
-// the one shown is dropped.
+// command line give the same picture. One frame request is out at a time, sent as soon as the
+// last one is answered, so the server renders the next frame while the browser decodes and draws
+// this one; input that arrives meanwhile only marks the state as changed, so the newest state is
+// rendered next, no stale frame queues up, and a frame older than the one shown is dropped.
 'use strict';
 
 const $ = (id) => document.getElementById(id);
 const exported = window.SHADOWREF_EXPORT || null;
 
-// Figures for the benchmark and the browser test (bench/explore/bench.mjs, tests/browser/).
-const exploreStats = { framesShown: 0, serverMs: [], latencyMs: [], errors: 0, superseded: 0 };
+// Figures for the benchmark and the browser test (tests/browser/explore_bench.mjs, explore.test.mjs).
+const exploreStats = { framesShown: 0, serverMs: [], encodeMs: [], latencyMs: [], errors: 0, superseded: 0 };
 window.exploreStats = exploreStats;
 
 let scene = null;      // the scene's values as the server summarised them (/api/scene)
@@ -24,6 +24,7 @@ const state = {
 };
 let cameraMoved = false;
 let lastImage = null;   // {width, height, values, valueName, info}
+let lastInfo = {};      // the X-Info of the frame shown: {text, info, view}
 
 // ---- numbers as the command line gets them: at most 4 decimals, no trailing zeros
 const num = (v) => String(Number(Number(v).toFixed(4)));
@@ -63,34 +64,79 @@ function showError(text) {
   box.textContent = text || '';
 }
 
-// ---- frames: at most two in flight (one rendering while the other travels), the newest state next
-const kMaxInFlight = 2;
-let inFlight = 0, dirty = false, version = 0, shownVersion = 0;
+// ---- frames. The server renders one request at a time, and a request waiting behind another
+// would show a state older than the newest input by the time it is rendered, so at most one
+// request is out at a time; the next is sent the moment the server has answered the last (its
+// headers arrive once the frame is rendered and encoded), so that the server renders frame n+1
+// while the browser receives, decodes and draws frame n. Input only marks the state as changed:
+// however many mouse moves arrive meanwhile, the next request asks for the newest state, and a
+// frame older than the one shown is dropped.
+let waiting = false;    // a request whose answer has not arrived
+let decoding = 0;       // answers being received, decoded and drawn, or waiting to be
+const kMaxDecoding = 2;  // more would only queue behind the decoder
+let dirty = false, version = 0, shownVersion = 0;
+let statusShown = -Infinity;  // when the server's time was last written under the title
 const inputTimes = new Map();  // state version -> time of the input that made it
 // For the tests: whether the picture shows the newest state, and the state's -D values.
-window.exploreIdle = () => inFlight === 0 && !dirty;
+window.exploreIdle = () => !waiting && decoding === 0 && !dirty;
 window.exploreOverrides = () => overrides();
 
 function changed() {
   version += 1;
   inputTimes.set(version, performance.now());
   dirty = true;
-  $('state').textContent = overrides().map((o) => '-D ' + o).join(' ') || '(the scene as written)';
-  if (inFlight < kMaxInFlight) pump();
+  pump();
 }
 
-async function pump() {
-  if (!dirty) return;
+function pump() {
+  if (!dirty || waiting || decoding >= kMaxDecoding) return;
   dirty = false;
-  inFlight += 1;
+  waiting = true;
   const asked = version;
+  const d = overrides();
+  $('state').textContent = d.map((o) => '-D ' + o).join(' ') || '(the scene as written)';
   // PNG for pictures without per-pixel values: a fraction of the bytes, decoded off the page's
   // thread; the server sends raw pixels and values for the views that have values.
   const params = { view: state.view, seq: asked, encoding: 'png' };
   if (['stencil', 'shadowmap', 'visibility', 'pass'].includes(state.view)) params.index = state.index;
   if (state.signed) params.signed = 1;
+  fetch('api/frame?' + query(params), { cache: 'no-store' }).then(
+    (response) => receive(asked, response),
+    (e) => {
+      waiting = false;
+      exploreStats.errors += 1;
+      showError('the server does not answer: ' + e);
+    });
+}
+
+// A PNG frame as a picture to draw, decoded off the page's thread and as stored (no colour
+// conversion), so that the canvas holds the rendered bytes. ImageDecoder takes the bytes as they
+// are; a Blob for createImageBitmap (browsers without ImageDecoder) is first handed to Chromium's
+// browser process, a few milliseconds more CPU per frame.
+async function decodePng(response) {
+  if (typeof ImageDecoder === 'undefined')
+    return createImageBitmap(await response.blob(), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
+  const decoder = new ImageDecoder({ data: await response.arrayBuffer(), type: 'image/png', colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
   try {
-    const response = await fetch('api/frame?' + query(params), { cache: 'no-store' });
+    return (await decoder.decode()).image;  // a VideoFrame, closed once drawn
+  } finally {
+    decoder.close();
+  }
+}
+
+// Answers are decoded and drawn one after the other, in the order they were asked for: decoded
+// side by side, a later frame could be ready first and the earlier one, rendered for nothing,
+// would be dropped.
+let decoded = Promise.resolve();
+function receive(asked, response) {
+  waiting = false;
+  decoding += 1;
+  pump();  // the newest state renders while this frame is decoded and drawn
+  decoded = decoded.then(() => show(asked, response));
+}
+
+async function show(asked, response) {
+  try {
     if (response.status === 204 || asked < shownVersion) {
       exploreStats.superseded += 1;  // a newer state was asked for, or is shown already
     } else if (!response.ok) {
@@ -98,20 +144,26 @@ async function pump() {
       showError(await response.text());
     } else {
       const png = (response.headers.get('Content-Type') || '').startsWith('image/png');
-      // Decoded as stored: no colour conversion, so the canvas holds the rendered bytes.
-      const picture = png ? await createImageBitmap(await response.blob(), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' })
-        : await response.arrayBuffer();
+      const picture = png ? await decodePng(response) : await response.arrayBuffer();
       if (asked > shownVersion) {
         showError('');
         drawFrame(response.headers, picture);
         exploreStats.framesShown += 1;
         exploreStats.serverMs.push(Number(response.headers.get('X-Load-Ms')) + Number(response.headers.get('X-Render-Ms')));
-        const t = inputTimes.get(asked);
-        if (t !== undefined) exploreStats.latencyMs.push(performance.now() - t);
-        for (const k of inputTimes.keys()) if (k <= asked) inputTimes.delete(k);
+        exploreStats.encodeMs.push(Number(response.headers.get('X-Encode-Ms')));
+        // Latency: from the oldest input this frame is the first to show (the one waited for longest).
+        let oldest = Infinity;
+        for (const [k, t] of inputTimes) if (k <= asked) { oldest = Math.min(oldest, t); inputTimes.delete(k); }
+        if (oldest !== Infinity) exploreStats.latencyMs.push(performance.now() - oldest);
         shownVersion = asked;
-        $('status').textContent = 'server ' + num(exploreStats.serverMs[exploreStats.serverMs.length - 1]) + ' ms';
+        // A few times a second: text changed with every frame would be laid out with every frame.
+        const now = performance.now();
+        if (now - statusShown > 250) {
+          $('status').textContent = 'server ' + num(exploreStats.serverMs[exploreStats.serverMs.length - 1]) + ' ms';
+          statusShown = now;
+        }
       } else {
+        if (picture.close) picture.close();
         exploreStats.superseded += 1;
       }
     }
@@ -119,14 +171,15 @@ async function pump() {
     exploreStats.errors += 1;
     showError('the server does not answer: ' + e);
   }
-  inFlight -= 1;
-  if (dirty && inFlight < kMaxInFlight) pump();
+  decoding -= 1;
+  pump();
 }
 
 // `picture`: an ImageBitmap (PNG) or an ArrayBuffer of RGBA pixels, then the values if any.
 function drawFrame(headers, picture) {
   const width = Number(headers.get('X-Width')), height = Number(headers.get('X-Height'));
-  const info = JSON.parse(headers.get('X-Info') || '{}');
+  const infoText = headers.get('X-Info') || '{}';
+  const info = infoText === lastInfo.text ? lastInfo.info : JSON.parse(infoText);
   const valueName = headers.get('X-Values') || '';
   const raw = picture instanceof ArrayBuffer;
   const values = raw && valueName ? new Float32Array(picture, width * height * 4, width * height) : null;
@@ -143,8 +196,12 @@ function drawFrame(headers, picture) {
     picture.close();
   }
   lastImage = { width, height, values, valueName, info };
-  showKey(info);
-  updateIndexChoices(info);
+  // While orbiting, the key stays the same frame after frame: rebuilt only when it changes.
+  if (infoText !== lastInfo.text || state.view !== lastInfo.view) {
+    showKey(info);
+    updateIndexChoices(info);
+  }
+  lastInfo = { text: infoText, info, view: state.view };
 }
 
 // ---- the key of a view: the stencil legend (only the counts present) or the range's colour bar
@@ -629,7 +686,9 @@ function wireControls() {
     drag = null;
   });
   canvas.addEventListener('mousemove', (e) => {
-    probe(e);
+    // Not while orbiting: the picture moves under the mouse, and a line of text changed with every
+    // mouse move is laid out and painted with every mouse move.
+    if (!drag || !drag.moved) probe(e);
     if (!drag || exported) return;
     const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
     if (!drag.moved && Math.abs(dx) + Math.abs(dy) < 3) return;
