@@ -34,7 +34,8 @@ void addReplayCommand(CLI::App& app, ReplayArgs& args) {
       ->check(wholeNumberIn(0, 256));
   replay->add_option("--depth-tolerance", args.depthTolerance,
                      "Against a real GL: 24-bit depth codes that may differ off the edges (default 2), plus the "
-                     "largest polygon offset units of the framebuffer's draws (Mesa doubles them, docs/conformance.md)")
+                     "largest polygon offset units of the framebuffer's draws (Mesa doubles them) and 1 if it has any (Mesa "
+                     "adds the offset in float; docs/conformance.md)")
       ->check(CLI::Range(0u, 1u << 24));
 }
 

@@ -42,10 +42,16 @@ double fixedFunctionColorTolerance(const Trace& trace, uint32_t target) {
 
 uint32_t fixedFunctionDepthTolerance(const Trace& trace, uint32_t target, uint32_t base) {
   double units = 0.0;
+  bool offset = false;
   for (const Command& c : trace.commands)
-    if (const auto* d = std::get_if<DrawCommand>(&c.what); d && c.target == target && d->state.polygonOffset.enabled)
+    if (const auto* d = std::get_if<DrawCommand>(&c.what); d && c.target == target && d->state.polygonOffset.enabled) {
       units = std::max(units, std::fabs(d->state.polygonOffset.units));
-  return base + uint32_t(std::min(std::ceil(units), 16777215.0));
+      offset = true;
+    }
+  // Under polygon offset Mesa adds the offset to the interpolated float depth: one more float
+  // rounding (half an ulp, up to half a code for depth in [0.5, 1)) beyond the 2 codes of
+  // §Depth precision, so the two may be one code further apart.
+  return base + uint32_t(std::min(std::ceil(units), 16777215.0)) + (offset ? 1u : 0u);
 }
 
 namespace {

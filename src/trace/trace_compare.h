@@ -55,7 +55,8 @@ double fixedFunctionColorTolerance(const Trace& trace, uint32_t target);
 
 // The depth tolerance of a target against a GL: `base` codes plus the largest |units| of its
 // polygon-offset draws — Mesa moves depth by 2 codes per unit where shadowref moves it by 1
-// (r = 1/(2^24 - 1), docs/conformance.md §Polygon offset).
+// (r = 1/(2^24 - 1), docs/conformance.md §Polygon offset) — plus 1 when it has any: Mesa adds
+// the offset to its float depth, one more rounding.
 uint32_t fixedFunctionDepthTolerance(const Trace& trace, uint32_t target, uint32_t base);
 
 // Compares expected[t] with actual[t] for every target both have. Against a GL (tolerances not
