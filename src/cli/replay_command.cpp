@@ -22,7 +22,7 @@ void addReplayCommand(CLI::App& app, ReplayArgs& args) {
       ->check(CLI::IsMember(trace::replayTargetNames()));
   replay->add_option("--against", args.against,
                      "What to compare with: 'trace' (default: the buffers recorded in the trace, byte for byte; "
-                     "for an OSMesa target the reference in fixed-function mode) or another --on target")
+                     "for an OSMesa or EGL target the reference in fixed-function mode) or another --on target")
       ->check(CLI::IsMember([] {
         std::vector<std::string> names = {"trace"};
         for (const std::string& n : trace::replayTargetNames()) names.push_back(n);
