@@ -390,13 +390,9 @@ struct MesaFrameRenderer::Impl {
   GLuint mapTexture = 0, mapFramebuffer = 0;
 
   Impl(const Scene& s, std::string_view m, MesaLighting shading) : scene(s), method(m), lighting(shading) {
-    // An empty scenario of the scene's size: the harness creates that context and leaves it
-    // current; every call below goes to it.
-    conformance::Scenario empty;
-    empty.name = "vs-mesa context";
-    empty.width = scene.width;
-    empty.height = scene.height;
-    conformance::renderWithMesa(empty);
+    // The harness's context of the scene's size (the product's OSMesa context), left current:
+    // every call below goes to it.
+    conformance::mesaContext(scene.width, scene.height);
     gl = loadFunctions();
     const bool volumes = method == "zpass" || method == "zfail";
     if (!volumes && method != "shadowmap")

@@ -31,7 +31,7 @@ render_packages=(
   libpng-dev libopenexr-dev nettle-dev libcpp-httplib-dev
   python3-dev pybind11-dev python3-numpy
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev chromium ffmpeg parallel
+test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev libegl-dev libegl-mesa0 clang libclang-rt-14-dev chromium ffmpeg parallel
                python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in

@@ -11,10 +11,12 @@ namespace shadowref::cli {
 void handOverToGlProgram(int argc, char** argv) {
 #ifndef SHADOWREF_GL_PROGRAM
   if (argc < 2 || std::string_view(argv[1]) != "replay") return;
-  bool namesOsmesa = false;
-  for (int i = 2; i < argc; ++i)
-    if (std::string_view(argv[i]).find("osmesa:") != std::string_view::npos) namesOsmesa = true;
-  if (!namesOsmesa) return;
+  bool namesGl = false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view arg(argv[i]);
+    if (arg.find("osmesa:") != std::string_view::npos || arg.find("egl:") != std::string_view::npos) namesGl = true;
+  }
+  if (!namesGl) return;
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (ec) return;

@@ -17,19 +17,25 @@ void addReplayCommand(CLI::App& app, ReplayArgs& args) {
   replay->add_option("trace", args.trace, "The trace file (.srtrace, docs/trace-format.md)")->required();
   replay->add_option("--on", args.on,
                      "Where to run it: 'reference' (default), 'fast', 'osmesa:llvmpipe' or 'osmesa:softpipe' (Mesa, "
-                     "in a build with OSMesa)")
-      ->check(CLI::IsMember({"reference", "fast", "osmesa:llvmpipe", "osmesa:softpipe"}));
+                     "in a build with OSMesa), 'egl:llvmpipe' or 'egl:softpipe' (Mesa through EGL's surfaceless "
+                     "platform, in a build with OSMesa and EGL; no accumulation buffer)")
+      ->check(CLI::IsMember(trace::replayTargetNames()));
   replay->add_option("--against", args.against,
                      "What to compare with: 'trace' (default: the buffers recorded in the trace, byte for byte; "
-                     "for an OSMesa target the reference in fixed-function mode) or another --on target")
-      ->check(CLI::IsMember({"trace", "reference", "fast", "osmesa:llvmpipe", "osmesa:softpipe"}));
+                     "for an OSMesa or EGL target the reference in fixed-function mode) or another --on target")
+      ->check(CLI::IsMember([] {
+        std::vector<std::string> names = {"trace"};
+        for (const std::string& n : trace::replayTargetNames()) names.push_back(n);
+        return names;
+      }()));
   replay->add_option("--report", args.report,
                      "Folder for index.html with the expected, actual and difference pictures of every buffer");
   replay->add_option("--threads", args.threads, "Threads of the fast pipeline (0: one per CPU)")
       ->check(wholeNumberIn(0, 256));
   replay->add_option("--depth-tolerance", args.depthTolerance,
                      "Against a real GL: 24-bit depth codes that may differ off the edges (default 2), plus the "
-                     "largest polygon offset units of the framebuffer's draws (Mesa doubles them, docs/conformance.md)")
+                     "largest polygon offset units of the framebuffer's draws (Mesa doubles them) and 1 if it has any (Mesa "
+                     "adds the offset in float; docs/conformance.md)")
       ->check(CLI::Range(0u, 1u << 24));
 }
 
@@ -53,6 +59,10 @@ int runReplay(const ReplayArgs& args) {
   }
   if ((on.gl || (against && against->gl)) && !osmesaAvailable()) {
     std::cerr << "replay: this build has no OSMesa (install libosmesa6-dev and rebuild)\n";
+    return kBadInput;
+  }
+  if ((on.api == "egl" || (against && against->api == "egl")) && !eglAvailable()) {
+    std::cerr << "replay: this build has no EGL (install libegl-dev and libegl-mesa0 and rebuild)\n";
     return kBadInput;
   }
   // A real GL on either side: both replay in the fixed-function mode and may differ as

@@ -5,15 +5,33 @@
 #ifdef SHADOWREF_HAVE_OSMESA
 #include "trace/osmesa/osmesa_replay.h"
 #endif
+#ifdef SHADOWREF_HAVE_EGL
+#include "trace/osmesa/egl_replay.h"
+#endif
 
 namespace shadowref::trace {
 
 std::optional<ReplayTarget> parseReplayTarget(const std::string& name) {
-  if (name == "reference") return ReplayTarget{name, false, PipelineKind::Reference, ""};
-  if (name == "fast") return ReplayTarget{name, false, PipelineKind::Fast, ""};
-  if (name == "osmesa:llvmpipe") return ReplayTarget{name, true, PipelineKind::Reference, "llvmpipe"};
-  if (name == "osmesa:softpipe") return ReplayTarget{name, true, PipelineKind::Reference, "softpipe"};
+  if (name == "reference") return ReplayTarget{name, false, "", PipelineKind::Reference, ""};
+  if (name == "fast") return ReplayTarget{name, false, "", PipelineKind::Fast, ""};
+  for (const char* api : {"osmesa", "egl"})
+    for (const char* driver : {"llvmpipe", "softpipe"})
+      if (name == std::string(api) + ":" + driver) return ReplayTarget{name, true, api, PipelineKind::Reference, driver};
   return std::nullopt;
+}
+
+const std::vector<std::string>& replayTargetNames() {
+  static const std::vector<std::string> names = {"reference",       "fast",         "osmesa:llvmpipe",
+                                                 "osmesa:softpipe", "egl:llvmpipe", "egl:softpipe"};
+  return names;
+}
+
+bool eglAvailable() {
+#ifdef SHADOWREF_HAVE_EGL
+  return true;
+#else
+  return false;
+#endif
 }
 
 bool osmesaAvailable() {
@@ -27,6 +45,13 @@ bool osmesaAvailable() {
 ReplayResult replayOn(const Trace& trace, const ReplayTarget& target, ReplayMode mode, int threads) {
   if (!target.gl) return replayOnShadowref(trace, target.kind, threads, mode);
   if (mode != ReplayMode::FixedFunction) throw std::logic_error("a real GL replays in the fixed-function mode");
+  if (target.api == "egl") {
+#ifdef SHADOWREF_HAVE_EGL
+    return replayOnEgl(trace, target.driver);
+#else
+    throw std::runtime_error(target.name + ": this build has no EGL (install libegl-dev and libegl-mesa0 and rebuild)");
+#endif
+  }
 #ifdef SHADOWREF_HAVE_OSMESA
   return replayOnOsmesa(trace, target.driver);
 #else

@@ -26,9 +26,12 @@ struct BufferComparison {
   bool comparable = true; // false: present on one side only
   size_t pixels = 0, edgePixels = 0;
   size_t differing = 0, differingOnEdge = 0, differingOffEdge = 0;  // beyond the tolerance
+  // Of the differing pixels off the edges, depth only, against a GL: those within the bound of a
+  // near-plane cut (edge_mask.h, NearCutBound), not counted in differingOffEdge.
+  size_t differingNearCut = 0;
   double maxDifference = 0, maxDifferenceOffEdge = 0;  // colour 1/255, depth codes, stencil values
   double tolerance = 0;
-  std::vector<uint8_t> differs;  // per pixel: 0 same, 1 on an edge, 2 off the edges
+  std::vector<uint8_t> differs;  // per pixel: 0 same, 1 on an edge, 2 off the edges, 3 near-plane cut
   std::string firstOffEdge;      // "(x,y): expected ... got ..."
   bool passes() const { return comparable && differingOffEdge == 0; }
 };
@@ -52,10 +55,13 @@ double fixedFunctionColorTolerance(const Trace& trace, uint32_t target);
 
 // The depth tolerance of a target against a GL: `base` codes plus the largest |units| of its
 // polygon-offset draws — Mesa moves depth by 2 codes per unit where shadowref moves it by 1
-// (r = 1/(2^24 - 1), docs/conformance.md §Polygon offset).
+// (r = 1/(2^24 - 1), docs/conformance.md §Polygon offset) — plus 1 when it has any: Mesa adds
+// the offset to its float depth, one more rounding.
 uint32_t fixedFunctionDepthTolerance(const Trace& trace, uint32_t target, uint32_t base);
 
-// Compares expected[t] with actual[t] for every target both have.
+// Compares expected[t] with actual[t] for every target both have. Against a GL (tolerances not
+// exact), a depth difference off the edges at a pixel of a triangle the near plane cuts is
+// explained up to the tolerance plus that cut's bound (NearCutBound).
 Comparison compareBuffers(const Trace& trace, const std::vector<const Buffers*>& expected,
                           const std::vector<Buffers>& actual, const std::vector<Tolerances>& tolerances);
 

@@ -68,11 +68,20 @@ ReplayShaders::ReplayShaders(const Trace& trace) {
 
 ReplayShaders::~ReplayShaders() = default;
 
+namespace {
+
+// The clip position as GL's float vertex pipeline holds it. Not inlined: GCC 12's SLP vectorizer
+// (-O2 and up) turned the double -> float -> double round trip inlined in the loop below into a
+// plain copy of the four doubles, so the replay drew unrounded positions.
+[[gnu::noinline]] glm::vec4 toFloat(const glm::dvec4& p) { return glm::vec4(p); }
+
+}  // namespace
+
 std::vector<ClipVertex> fixedFunctionVertices(const DrawCommand& draw, const FragmentShader* shader) {
   std::vector<ClipVertex> out(draw.vertices.size());
   for (size_t i = 0; i < out.size(); ++i) {
     const ClipVertex& v = draw.vertices[i];
-    out[i].position = glm::dvec4(glm::vec4(v.position));
+    out[i].position = glm::dvec4(toFloat(v.position));
     if (!shader) continue;
     FragmentInput in;
     in.facing = FrontFacing;

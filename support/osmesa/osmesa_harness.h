@@ -1,18 +1,20 @@
-// Mesa's OSMesa as the real OpenGL the conformance cases are compared with: a legacy
-// GL 2.1 context with RGBA8 colour, 24-bit depth, 8-bit stencil and a 16-bit accumulation buffer.
-// The gallium driver (softpipe or llvmpipe) is chosen by GALLIUM_DRIVER before the first context.
+// Mesa's OSMesa for the benchmarks (bench/vs_mesa) and the conformance tests: the product's OSMesa
+// context (src/trace/osmesa/osmesa_replay.h: OSMESA_RGBA, 24-bit depth, 8-bit stencil, a 16-bit
+// accumulation buffer, checked), one per size, kept for the process and made current on request.
+// The conformance cases themselves run as traces through `shadowref replay`'s code
+// (tests/conformance/comparison.h). The gallium driver (softpipe or llvmpipe) is chosen by
+// GALLIUM_DRIVER before the first context.
 #pragma once
 
 #include <string>
 
-#include "osmesa/scenario.h"
+#include "trace/osmesa/osmesa_replay.h"
 
 namespace shadowref::conformance {
 
-// Renders a scenario with Mesa: identity model-view and projection, so the clip-space vertices go
-// to glVertex4d unchanged, and every RenderState field is translated to its GL call.
-// Throws std::runtime_error if no context can be created.
-Readback renderWithMesa(const Scenario& scenario);
+// The context of that size, current, with the fixed-function defaults of a replay
+// (trace::setFixedFunctionDefaults). Throws std::runtime_error if no context can be created.
+trace::OsmesaContext& mesaContext(int width, int height);
 
 // GL_RENDERER of the context, e.g. "softpipe" or "llvmpipe (LLVM 15.0.6, 256 bits)".
 std::string mesaRenderer();

@@ -1,6 +1,6 @@
-// A conformance case as data: the steps (clears, draws, accumulation operations) that both
-// shadowref and Mesa execute with the same clip-space vertices and the same render state, and the
-// buffers each of them hands back for the pixel-by-pixel comparison (docs/conformance.md).
+// A conformance case as data: the steps (clears, draws, accumulation operations) that are
+// captured as a trace and replayed on shadowref and on Mesa with the same clip-space vertices and
+// the same render state (tests/conformance/comparison.h, docs/conformance.md).
 #pragma once
 
 #include <cstdint>
@@ -68,13 +68,6 @@ struct Scenario {
   std::string note;
 };
 
-// What either implementation hands back, bottom row first (as glReadPixels returns it).
-struct Readback {
-  int width = 0, height = 0;
-  std::vector<glm::vec4> color;   // RGBA in [0, 1]; Mesa's bytes divided by 255
-  std::vector<uint32_t> depth24;  // 24-bit unsigned-normalised depth codes
-  std::vector<uint8_t> stencil;
-};
 
 // The default state of a draw over the whole framebuffer: viewport = framebuffer, all tests off.
 RenderState fullViewportState(int width, int height);

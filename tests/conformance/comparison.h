@@ -1,5 +1,9 @@
-// The pixel-by-pixel comparison of shadowref with Mesa for one scenario, and the report row it
-// contributes to docs/conformance.md (scripts/conformance-report.sh).
+// A conformance scenario run as `shadowref replay` runs a captured frame: the scenario's steps are
+// captured through the trace recorder (src/trace/trace_recorder.h), read back from the trace
+// format, replayed on shadowref's reference pipeline and on Mesa (OSMesa, the driver
+// GALLIUM_DRIVER names) in the fixed-function mode, and compared by the replay's comparison
+// (src/trace/trace_compare.h) with the case's tolerances; the report row it contributes to
+// docs/conformance.md (scripts/conformance-report.sh).
 #pragma once
 
 #include <cstddef>
@@ -7,6 +11,8 @@
 #include <string>
 
 #include "osmesa/scenario.h"
+#include "trace/trace.h"
+#include "trace/trace_compare.h"
 
 namespace shadowref::conformance {
 
@@ -38,11 +44,25 @@ struct CaseResult {
   }
 };
 
-CaseResult compare(const Scenario& scenario, const Readback& shadowref, const Readback& mesa);
+// The scenario as a captured trace: one framebuffer of the scenario's size with 24-bit depth,
+// every step a command (draws with ColorVaryingShader, colour in varyings 0..3), each step
+// ending a pass; written by the recorder and parsed back. With SHADOWREF_CONFORMANCE_TRACES
+// naming a folder, the trace is also written there as <case>.srtrace for `shadowref replay`.
+trace::Trace captureScenario(const Scenario& scenario);
 
-// Renders the scenario with both implementations and compares them. When the environment variable
-// SHADOWREF_CONFORMANCE_REPORT names a file, appends the case's markdown table row to it; with
-// SHADOWREF_CONFORMANCE_VERBOSE set, prints every differing pixel.
+// Both sides' buffers of a scenario's trace, replayed in the fixed-function mode.
+struct Replayed {
+  trace::Trace trace;
+  trace::Buffers shadowref, mesa;
+};
+Replayed replayScenario(const Scenario& scenario);
+
+// The replay's comparison (trace::compareBuffers) with the scenario's tolerances, as a row.
+CaseResult compare(const Scenario& scenario, const Replayed& replayed);
+
+// Replays and compares. When the environment variable SHADOWREF_CONFORMANCE_REPORT names a
+// file, appends the case's markdown table row to it; with SHADOWREF_CONFORMANCE_VERBOSE set,
+// prints the replay's text report.
 CaseResult runCase(const Scenario& scenario);
 
 std::string markdownRow(const CaseResult& r);

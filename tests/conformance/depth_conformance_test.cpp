@@ -3,8 +3,7 @@
 #include <iostream>
 
 #include "conformance/case_builder.h"
-#include "osmesa/osmesa_harness.h"
-#include "conformance/shadowref_backend.h"
+#include "trace/osmesa/osmesa_replay.h"
 
 using namespace shadowref;
 using namespace shadowref::conformance;
@@ -79,9 +78,9 @@ Scenario polygonOffsetScenario(double factor, double units, double zSlope) {
 }
 
 // Depth code at the framebuffer centre with offset minus without, in 24-bit units.
-double measuredOffsetUnits(const Readback& with, const Readback& without) {
+double measuredOffsetUnits(const trace::Buffers& with, const trace::Buffers& without) {
   const size_t centre = size_t(kSize / 2) * kSize + kSize / 2;
-  return double(with.depth24[centre]) - double(without.depth24[centre]);
+  return double(with.depth[centre]) - double(without.depth[centre]);
 }
 
 }  // namespace
@@ -93,13 +92,12 @@ TEST_CASE("polygon offset: the factor term matches Mesa, Mesa's units term is r 
 
   // The units term: shadowref's r for unorm24 is one code, 1 / (2^24 - 1)
   // (DepthCodec::resolvableDifference). Measure Mesa's r on a flat triangle.
-  const Scenario without = polygonOffsetScenario(0.0, 0.0, 0.0);
-  const Readback mesaWithout = renderWithMesa(without), oursWithout = renderWithShadowref(without);
+  const Replayed without = replayScenario(polygonOffsetScenario(0.0, 0.0, 0.0));
   for (double units : {1.0, 5.0, -3.0}) {
-    const Scenario with = polygonOffsetScenario(0.0, units, 0.0);
-    const double ours = measuredOffsetUnits(renderWithShadowref(with), oursWithout);
-    const double mesa = measuredOffsetUnits(renderWithMesa(with), mesaWithout);
-    INFO("units " << units << ": shadowref moves depth by " << ours << " codes, " << mesaDriverName() << " by " << mesa);
+    const Replayed with = replayScenario(polygonOffsetScenario(0.0, units, 0.0));
+    const double ours = measuredOffsetUnits(with.shadowref, without.shadowref);
+    const double mesa = measuredOffsetUnits(with.mesa, without.mesa);
+    INFO("units " << units << ": shadowref moves depth by " << ours << " codes, " << trace::osmesaRenderer() << " by " << mesa);
     CHECK(ours == units);
     CHECK(mesa == 2 * units);  // gallium's draw/setup stage doubles the units term
   }
@@ -124,7 +122,8 @@ TEST_CASE("shadowref's 24-bit depth is the exact plane depth rounded, Mesa is wi
   auto ndc = [](double x, double y) { return 2.0 * (0.3 + x / 200 + y / 300) - 1.0; };
   addTriangle(d, {0, 0, ndc(0, 0)}, {128, 0, ndc(128, 0)}, {0, 128, ndc(0, 128)}, {1, 1, 1, 1});
   sc.steps.push_back(d);
-  const Readback ours = renderWithShadowref(sc), mesa = renderWithMesa(sc);
+  const Replayed replayed = replayScenario(sc);
+  const trace::Buffers &ours = replayed.shadowref, &mesa = replayed.mesa;
   // Both implementations receive float clip coordinates: the exact plane is through those.
   auto window = [](double zNdc) { return double(float(zNdc)) * 0.5 + 0.5; };
   const double z0 = window(ndc(0, 0)), z1 = window(ndc(128, 0)), z2 = window(ndc(0, 128));
@@ -134,11 +133,11 @@ TEST_CASE("shadowref's 24-bit depth is the exact plane depth rounded, Mesa is wi
       const double exact = (z0 + (z1 - z0) * (x + 0.5) / 128 + (z2 - z0) * (y + 0.5) / 128) * 16777215.0;
       const size_t i = size_t(y) * kSize + size_t(x);
       INFO("pixel " << x << "," << y << " exact " << exact);
-      REQUIRE(std::fabs(double(ours.depth24[i]) - exact) <= 0.5 + 1e-6);
-      mesaWorst = std::max(mesaWorst, std::fabs(double(mesa.depth24[i]) - exact));
+      REQUIRE(std::fabs(double(ours.depth[i]) - exact) <= 0.5 + 1e-6);
+      mesaWorst = std::max(mesaWorst, std::fabs(double(mesa.depth[i]) - exact));
     }
   }
-  std::cout << "depth precision: " << mesaDriverName() << " is at most " << mesaWorst
+  std::cout << "depth precision: " << trace::osmesaRenderer() << " is at most " << mesaWorst
             << " codes from the exact depth\n";
   CHECK(mesaWorst < 2.0);
   checkAgreement(runCase(sc));
@@ -181,11 +180,11 @@ TEST_CASE("the depth of a steep triangle with vertices off the sub-pixel grid is
   auto ndc = [](double x) { return 2.0 * (0.1 + 0.012 * x) - 1.0; };
   addTriangle(d, {xs[0], ys[0], ndc(xs[0])}, {xs[1], ys[1], ndc(xs[1])}, {xs[2], ys[2], ndc(xs[2])}, {1, 1, 1, 1});
   sc.steps.push_back(d);
-  const Readback ours = renderWithShadowref(sc);
+  const trace::Buffers ours = replayScenario(sc).shadowref;
   double worst = 0;
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x + y <= 66; ++x)  // well inside the hypotenuse x + y = 69.6
-      if (x < kSize) worst = std::max(worst, std::fabs(double(ours.depth24[size_t(y) * kSize + size_t(x)]) -
+      if (x < kSize) worst = std::max(worst, std::fabs(double(ours.depth[size_t(y) * kSize + size_t(x)]) -
                                         (0.1 + 0.012 * (x + 0.5)) * 16777215.0));
   INFO("shadowref is up to " << worst << " codes from the exact plane depth");
   CHECK(worst <= 2.0);  // float rounding of the vertex depths allows a little more than 0.5

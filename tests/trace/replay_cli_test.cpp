@@ -64,3 +64,29 @@ TEST_CASE("replay: a truncated or garbled trace exits 2 with its byte offset", "
 }
 
 }  // namespace shadowref::testing
+
+namespace shadowref::testing {
+
+// `replay --on egl:llvmpipe` as a user types it: shadowref hands it to shadowref-gl, which replays
+// through EGL's surfaceless platform and compares with the reference in the fixed-function mode.
+TEST_CASE("replay: --on egl:llvmpipe runs through shadowref-gl", "[trace][cli][egl]") {
+  if (!std::filesystem::exists(std::filesystem::path(SHADOWREF_CLI).parent_path() / "shadowref-gl")) {
+    WARN("no shadowref-gl in this build");
+    return;
+  }
+  const std::filesystem::path dir = testScratch() / "replay_cli_egl";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string trace = captureMinimal(dir);
+  CliRun r = runShadowref("replay " + trace + " --on egl:llvmpipe");
+  CAPTURE(r.out, r.err);
+  if (r.err.find("no EGL") != std::string::npos) {
+    WARN("this build has no EGL");
+    return;
+  }
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("actual:   egl:llvmpipe (fixed-function mode)"));
+  CHECK_THAT(r.out, Catch::Contains("result: agrees"));
+}
+
+}  // namespace shadowref::testing

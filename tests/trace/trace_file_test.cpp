@@ -8,6 +8,7 @@
 
 #include "gl/fragment_shader.h"
 #include "gl/lighting.h"
+#include "trace/replay_target.h"
 #include "trace/trace_file.h"
 #include "trace/trace_recorder.h"
 #include "trace/trace_replay.h"
@@ -212,6 +213,21 @@ TEST_CASE("trace: malformed values are refused with the offset of the value", "[
     b[end] = 'Q';
     refuse(b, end, "unknown record type 81");
   }
+}
+
+// A framebuffer object has no accumulation buffer: the hand-made frame (LOAD, RETURN) is refused
+// on EGL with the reason, and replays on OSMesa, whose context has one.
+TEST_CASE("trace: a frame with glAccum is refused on egl:, replayed on osmesa:", "[trace][egl]") {
+  if (!osmesaAvailable() || !eglAvailable()) {
+    WARN("this build has no OSMesa or no EGL");
+    return;
+  }
+  const Trace t = parseTrace(handMadeTrace());
+  CHECK_THROWS_WITH(replayOn(t, *parseReplayTarget("egl:llvmpipe"), ReplayMode::FixedFunction, 1),
+                    Catch::Contains("framebuffer 0 uses the accumulation buffer, which this GL's framebuffer lacks"));
+  const ReplayResult r = replayOn(t, *parseReplayTarget("osmesa:llvmpipe"), ReplayMode::FixedFunction, 1);
+  REQUIRE(r.buffers.size() == 1);
+  CHECK(r.buffers[0].color.size() == 8 * 6);
 }
 
 }  // namespace shadowref::trace

@@ -1,6 +1,6 @@
 // RenderState as OpenGL state, for the places that drive Mesa with shadowref's states: `replay
-// --on osmesa:*` (osmesa_replay.cpp), the conformance cases (support/osmesa/osmesa_harness.cpp)
-// and bench/vs-mesa's frames (bench/mesa_frame.cpp).
+// --on osmesa:*|egl:*` (osmesa_replay.cpp, which the conformance cases run through) and
+// bench/vs-mesa's frames (bench/mesa_frame.cpp).
 #pragma once
 
 #include <GL/osmesa.h>
@@ -14,7 +14,9 @@
 namespace shadowref::conformance {
 
 // A GL entry point past GL 1.1 through OSMesaGetProcAddress (gl.h declares only GL 1.1 without
-// GL_GLEXT_PROTOTYPES); std::runtime_error if Mesa lacks it. Needs a current context.
+// GL_GLEXT_PROTOTYPES); std::runtime_error if Mesa lacks it. Needs a current context. The entry
+// points dispatch to the current Mesa context, also one made current through EGL (both use
+// libglapi).
 template <class Fn>
 Fn loadGlFunction(const char* name) {
   auto fn = reinterpret_cast<Fn>(OSMesaGetProcAddress(name));

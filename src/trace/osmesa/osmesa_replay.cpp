@@ -1,12 +1,7 @@
 #include "trace/osmesa/osmesa_replay.h"
 
-#include <GL/osmesa.h>
-
 #include <cstdlib>
-#include <memory>
 #include <stdexcept>
-
-#include "trace/osmesa/gl_state.h"
 
 namespace shadowref::trace {
 
@@ -16,39 +11,6 @@ std::string& lastRenderer() {
   static std::string renderer;
   return renderer;
 }
-
-class Context {
- public:
-  Context(int width, int height) : width_(width), height_(height), pixels_(size_t(width) * size_t(height) * 4) {
-    context_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 16, nullptr);
-    if (!context_) throw std::runtime_error("OSMesaCreateContextExt failed");
-    if (!OSMesaMakeCurrent(context_, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
-      OSMesaDestroyContext(context_);
-      throw std::runtime_error("OSMesaMakeCurrent failed");
-    }
-    GLint depthBits = 0, stencilBits = 0, accumBits = 0;
-    glGetIntegerv(GL_DEPTH_BITS, &depthBits);
-    glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
-    glGetIntegerv(GL_ACCUM_RED_BITS, &accumBits);
-    if (depthBits != 24 || stencilBits != 8 || accumBits < 16) {
-      OSMesaDestroyContext(context_);
-      throw std::runtime_error("the OSMesa context lacks 24-bit depth, 8-bit stencil or a 16-bit accumulation buffer");
-    }
-    const GLubyte* r = glGetString(GL_RENDERER);
-    lastRenderer() = r ? reinterpret_cast<const char*>(r) : "unknown";
-    stencil_ = conformance::GlStencilFunctions::load();
-  }
-  ~Context() { OSMesaDestroyContext(context_); }
-  Context(const Context&) = delete;
-  Context& operator=(const Context&) = delete;
-  const conformance::GlStencilFunctions& stencil() const { return stencil_; }
-
- private:
-  int width_, height_;
-  std::vector<unsigned char> pixels_;
-  OSMesaContext context_ = nullptr;
-  conformance::GlStencilFunctions stencil_;
-};
 
 void execute(const ClearCommand& c, const conformance::GlStencilFunctions& gl) {
   const ClearRequest& q = c.request;
@@ -115,9 +77,62 @@ Buffers readBack(const Target& t) {
   return b;
 }
 
+bool usesAccumulation(const Trace& trace, uint32_t target) {
+  for (const Command& c : trace.commands) {
+    if (c.target != target) continue;
+    if (std::holds_alternative<AccumCommand>(c.what)) return true;
+    if (const auto* clear = std::get_if<ClearCommand>(&c.what); clear && clear->request.accum) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
-ReplayResult replayOnOsmesa(const Trace& trace, const std::string& driver) {
+void GlContext::loadCommon() {
+  const GLubyte* r = glGetString(GL_RENDERER);
+  renderer_ = r ? reinterpret_cast<const char*>(r) : "unknown";
+  lastRenderer() = renderer_;
+  stencil_ = conformance::GlStencilFunctions::load();
+}
+
+OsmesaContext::OsmesaContext(int width, int height)
+    : width_(width), height_(height), pixels_(size_t(width) * size_t(height) * 4) {
+  context_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 16, nullptr);
+  if (!context_) throw std::runtime_error("OSMesaCreateContextExt failed");
+  try {
+    makeCurrent();
+    GLint depthBits = 0, stencilBits = 0, accumBits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &depthBits);
+    glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
+    glGetIntegerv(GL_ACCUM_RED_BITS, &accumBits);
+    if (depthBits != 24 || stencilBits != 8 || accumBits < 16)
+      throw std::runtime_error("the OSMesa context lacks 24-bit depth, 8-bit stencil or a 16-bit accumulation buffer");
+    loadCommon();
+  } catch (...) {
+    OSMesaDestroyContext(context_);
+    throw;
+  }
+}
+
+OsmesaContext::~OsmesaContext() { OSMesaDestroyContext(context_); }
+
+void OsmesaContext::makeCurrent() {
+  if (!OSMesaMakeCurrent(context_, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_))
+    throw std::runtime_error("OSMesaMakeCurrent failed");
+}
+
+void setFixedFunctionDefaults() {
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glShadeModel(GL_SMOOTH);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_DITHER);
+}
+
+ReplayResult replayOnGl(const Trace& trace, const std::string& driver,
+                        const std::function<std::unique_ptr<GlContext>(int width, int height)>& make) {
   // Mesa reads GALLIUM_DRIVER when it makes its first context; a process asking for another
   // driver later is refused below.
   setenv("GALLIUM_DRIVER", driver.c_str(), 1);
@@ -125,34 +140,35 @@ ReplayResult replayOnOsmesa(const Trace& trace, const std::string& driver) {
   ReplayResult result;
   for (uint32_t t = 0; t < trace.targets.size(); ++t) {
     const Target& target = trace.targets[t];
-    Context context(target.width, target.height);
-    if (lastRenderer().find(driver) == std::string::npos)
-      throw std::runtime_error("asked for Mesa's " + driver + ", got '" + lastRenderer() + "'");
-    glMatrixMode(GL_PROJECTION);
-    glLoadIdentity();
-    glMatrixMode(GL_MODELVIEW);
-    glLoadIdentity();
-    glShadeModel(GL_SMOOTH);
-    glDisable(GL_LIGHTING);
-    glDisable(GL_DITHER);  // dithering would perturb the 8-bit colour by up to one unit
+    const std::unique_ptr<GlContext> context = make(target.width, target.height);
+    if (context->renderer().find(driver) == std::string::npos)
+      throw std::runtime_error("asked for Mesa's " + driver + ", got '" + context->renderer() + "'");
+    if (!context->hasAccumulation() && usesAccumulation(trace, t))
+      throw std::runtime_error("framebuffer " + std::to_string(t) +
+                               " uses the accumulation buffer, which this GL's framebuffer lacks");
+    setFixedFunctionDefaults();
     // GL leaves a new context's buffers undefined; shadowref's start as colour 0, depth 1,
     // stencil 0, accumulation 0 (Framebuffer::ensure*).
     RenderState full;
     full.viewport = Viewport{0, 0, target.width, target.height, 0.0, 1.0};
-    conformance::applyRenderState(full, context.stencil());
+    conformance::applyRenderState(full, context->stencil());
     glClearColor(0, 0, 0, 0);
     glClearDepth(1.0);
     glClearStencil(0);
-    glClearAccum(0, 0, 0, 0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | GL_ACCUM_BUFFER_BIT);
+    GLbitfield initial = GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT;
+    if (context->hasAccumulation()) {
+      glClearAccum(0, 0, 0, 0);
+      initial |= GL_ACCUM_BUFFER_BIT;
+    }
+    glClear(initial);
     for (const Command& c : trace.commands) {
       if (c.target != t) continue;
       if (const auto* clear = std::get_if<ClearCommand>(&c.what)) {
-        execute(*clear, context.stencil());
+        execute(*clear, context->stencil());
       } else if (const auto* d = std::get_if<DrawCommand>(&c.what)) {
-        execute(*d, d->shader == kNoShader ? nullptr : &shaders[d->shader], context.stencil());
+        execute(*d, d->shader == kNoShader ? nullptr : &shaders[d->shader], context->stencil());
       } else if (const auto* a = std::get_if<AccumCommand>(&c.what)) {
-        conformance::applyRenderState(a->state, context.stencil());
+        conformance::applyRenderState(a->state, context->stencil());
         glAccum(conformance::glAccumOpOf(a->op), a->value);
       }
     }
@@ -162,6 +178,10 @@ ReplayResult replayOnOsmesa(const Trace& trace, const std::string& driver) {
     result.buffers.push_back(readBack(target));
   }
   return result;
+}
+
+ReplayResult replayOnOsmesa(const Trace& trace, const std::string& driver) {
+  return replayOnGl(trace, driver, [](int width, int height) { return std::make_unique<OsmesaContext>(width, height); });
 }
 
 std::string osmesaRenderer() { return lastRenderer(); }
