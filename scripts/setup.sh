@@ -4,9 +4,10 @@
 #   scripts/setup.sh [--role render|test|bench] [BUILD_DIR] [extra cmake args...]
 # Roles, each including the one before:
 #   render  the compiler, CMake and the libraries the CLI links (glm, yaml-cpp, tinygltf, CLI11,
-#           libpng, OpenEXR, nettle, cpp-httplib), and pybind11 and NumPy for the Python module;
-#           builds the CLI and the module (scripts/render-default.sh)
-#   test    + OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
+#           libpng, OpenEXR, nettle, cpp-httplib); builds the CLI only: shadowref and the
+#           shadowref-explore it hands `explore` to (scripts/render-default.sh)
+#   test    + pybind11, NumPy and Python's headers (the Python module),
+#           OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
 #           OSMesa (the conformance tests), clang and its runtimes (fuzzing), pytest, nbclient,
 #           ipykernel and matplotlib (the Python tests and the notebook), Chromium and
 #           tests/browser's npm packages (the explorer's browser test), ffmpeg (run, not linked,
@@ -25,13 +26,15 @@ if [ "${1:-}" = "--role" ]; then
   role=${2:-}
   shift 2 || { echo "setup: --role needs render, test or bench" >&2; exit 2; }
 fi
+# The render role's are what a fresh machine downloads before its first picture: g++ rather than
+# build-essential (make, dpkg-dev and Perl, which a Ninja build never runs), no Python.
 render_packages=(
-  build-essential cmake ninja-build pkg-config ccache
+  g++ cmake ninja-build pkg-config ccache
   libglm-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libpng-dev libopenexr-dev nettle-dev libcpp-httplib-dev
-  python3-dev pybind11-dev python3-numpy
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev chromium ffmpeg parallel
+test_packages=(python3-dev pybind11-dev python3-numpy
+               libopenimageio-dev openimageio-tools catch2 libosmesa6-dev clang libclang-rt-14-dev chromium ffmpeg parallel
                python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in
@@ -94,10 +97,6 @@ if $configure; then
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
         "${role_args[@]}" "$@" >/dev/null 2>"$build_dir.cmake.log" \
     || { cat "$build_dir.cmake.log" >&2; exit 1; }
-fi
-# The render role builds the Python module too where it is configured (Python, NumPy, pybind11).
-if [ "$role" = render ] && grep -q '^build shadowref_python:' "$build_dir/build.ninja" 2>/dev/null; then
-  targets+=(shadowref_python)
 fi
 cmake --build "$build_dir" "${targets[@]}"
 
