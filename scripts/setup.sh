@@ -71,19 +71,20 @@ fi
 build_dir=${1:-build}
 shift || true
 # What the role builds. A render-only build leaves out tests and benchmarks (and their
-# dependencies); a test or bench run turns them on in a build folder a render made.
+# dependencies); a test or bench run turns them on in a build folder a render made (the
+# benchmarks too: bench/tests is part of the suite). Arguments after BUILD_DIR come later on
+# cmake's command line and win (scripts/test.sh --sanitize leaves the benchmarks out).
 case $role in
   render) role_args=(-DSHADOWREF_TESTS=OFF -DSHADOWREF_BENCH=OFF); targets=(--target shadowref) ;;
-  test | bench) role_args=(-DSHADOWREF_TESTS=ON); targets=() ;;
+  test | bench) role_args=(-DSHADOWREF_TESTS=ON -DSHADOWREF_BENCH=ON); targets=() ;;
 esac
 configure=false
 if [ ! -f "$build_dir/build.ninja" ] || [ $# -gt 0 ]; then
   configure=true
-elif [ "$role" != render ] && ! grep -q '^SHADOWREF_TESTS:BOOL=ON$' "$build_dir/CMakeCache.txt"; then
+elif [ "$role" != render ] && ! { grep -q '^SHADOWREF_TESTS:BOOL=ON$' "$build_dir/CMakeCache.txt" &&
+                                  grep -q '^SHADOWREF_BENCH:BOOL=ON$' "$build_dir/CMakeCache.txt"; }; then
   configure=true
 fi
-[ "$role" = bench ] && ! grep -q '^SHADOWREF_BENCH:BOOL=ON$' "$build_dir/CMakeCache.txt" 2>/dev/null && configure=true
-[ "$role" = bench ] && role_args+=(-DSHADOWREF_BENCH=ON)
 # An existing build folder keeps its tests when a render builds in it.
 [ "$role" = render ] && [ -f "$build_dir/CMakeCache.txt" ] && role_args=()
 # ccache keeps the objects of earlier builds, of this checkout or any other: paths are taken
