@@ -92,9 +92,11 @@ if [ -n "${needed[explore]:-}" ]; then
   pages=(src/explore/page/*)
   cmake "-DFILES=$(IFS=';'; echo "${pages[*]}")" -DOUTPUT="$out/gen/explore_page.cpp" -P cmake/embed_files.cmake
 fi
+# Not the programs' own files: main, and the explore hand-over, whose stand-in server would take
+# the real one's place.
 for l in "${!needed[@]}"; do
   for src in $(sources_of "$l"); do
-    [ "$src" = src/cli/main.cpp ] && continue
+    case $src in src/cli/main.cpp | src/cli/explore_handover.cpp) continue ;; esac
     consider "$src" "$out/obj/$(echo "$src" | tr / _).o"
   done
 done
@@ -109,7 +111,7 @@ fi
 for l in "${!needed[@]}"; do
   objects=()
   for src in $(sources_of "$l"); do
-    [ "$src" = src/cli/main.cpp ] || objects+=("$out/obj/$(echo "$src" | tr / _).o")
+    case $src in src/cli/main.cpp | src/cli/explore_handover.cpp) ;; *) objects+=("$out/obj/$(echo "$src" | tr / _).o") ;; esac
   done
   lib=$out/lib/lib$l.a
   if [ ! -f "$lib" ] || [ -n "$(find "${objects[@]}" -newer "$lib" -print -quit)" ]; then

@@ -4,9 +4,10 @@
 #   scripts/setup.sh [--role render|test|bench] [BUILD_DIR] [extra cmake args...]
 # Roles, each including the one before:
 #   render  the compiler, CMake and the libraries the CLI links (glm, yaml-cpp, tinygltf, CLI11,
-#           libpng, OpenEXR, nettle, cpp-httplib), and pybind11 and NumPy for the Python module;
-#           builds the CLI and the module (scripts/render-default.sh)
-#   test    + OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
+#           libpng, OpenEXR, nettle, cpp-httplib); builds the CLI only: shadowref and the
+#           shadowref-explore it hands `explore` to (scripts/render-default.sh)
+#   test    + pybind11, NumPy and Python's headers (the Python module),
+#           OpenImageIO (the image-reading module of `compare`, and the tests' reader), Catch2,
 #           OSMesa (the conformance tests), clang and its runtimes (fuzzing), pytest, nbclient,
 #           ipykernel and matplotlib (the Python tests and the notebook), Chromium and
 #           tests/browser's npm packages (the explorer's browser test), ffmpeg (run, not linked,
@@ -25,13 +26,15 @@ if [ "${1:-}" = "--role" ]; then
   role=${2:-}
   shift 2 || { echo "setup: --role needs render, test or bench" >&2; exit 2; }
 fi
+# The render role's are what a fresh machine downloads before its first picture: g++ rather than
+# build-essential (make, dpkg-dev and Perl, which a Ninja build never runs), no Python.
 render_packages=(
-  build-essential cmake ninja-build pkg-config ccache
+  g++ cmake ninja-build pkg-config ccache
   libglm-dev libyaml-cpp-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libpng-dev libopenexr-dev nettle-dev libcpp-httplib-dev
-  python3-dev pybind11-dev python3-numpy
 )
-test_packages=(libopenimageio-dev openimageio-tools catch2 libosmesa6-dev libegl-dev libegl-mesa0 clang libclang-rt-14-dev chromium ffmpeg parallel
+test_packages=(python3-dev pybind11-dev python3-numpy
+               libopenimageio-dev openimageio-tools catch2 libosmesa6-dev libegl-dev libegl-mesa0 clang libclang-rt-14-dev chromium ffmpeg parallel
                python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib)
 bench_packages=(gnuplot-nox hyperfine time)
 case $role in
@@ -68,19 +71,20 @@ fi
 build_dir=${1:-build}
 shift || true
 # What the role builds. A render-only build leaves out tests and benchmarks (and their
-# dependencies); a test or bench run turns them on in a build folder a render made.
+# dependencies); a test or bench run turns them on in a build folder a render made (the
+# benchmarks too: bench/tests is part of the suite). Arguments after BUILD_DIR come later on
+# cmake's command line and win (scripts/test.sh --sanitize leaves the benchmarks out).
 case $role in
   render) role_args=(-DSHADOWREF_TESTS=OFF -DSHADOWREF_BENCH=OFF); targets=(--target shadowref) ;;
-  test | bench) role_args=(-DSHADOWREF_TESTS=ON); targets=() ;;
+  test | bench) role_args=(-DSHADOWREF_TESTS=ON -DSHADOWREF_BENCH=ON); targets=() ;;
 esac
 configure=false
 if [ ! -f "$build_dir/build.ninja" ] || [ $# -gt 0 ]; then
   configure=true
-elif [ "$role" != render ] && ! grep -q '^SHADOWREF_TESTS:BOOL=ON$' "$build_dir/CMakeCache.txt"; then
+elif [ "$role" != render ] && ! { grep -q '^SHADOWREF_TESTS:BOOL=ON$' "$build_dir/CMakeCache.txt" &&
+                                  grep -q '^SHADOWREF_BENCH:BOOL=ON$' "$build_dir/CMakeCache.txt"; }; then
   configure=true
 fi
-[ "$role" = bench ] && ! grep -q '^SHADOWREF_BENCH:BOOL=ON$' "$build_dir/CMakeCache.txt" 2>/dev/null && configure=true
-[ "$role" = bench ] && role_args+=(-DSHADOWREF_BENCH=ON)
 # An existing build folder keeps its tests when a render builds in it.
 [ "$role" = render ] && [ -f "$build_dir/CMakeCache.txt" ] && role_args=()
 # ccache keeps the objects of earlier builds, of this checkout or any other: paths are taken
@@ -94,10 +98,6 @@ if $configure; then
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
         "${role_args[@]}" "$@" >/dev/null 2>"$build_dir.cmake.log" \
     || { cat "$build_dir.cmake.log" >&2; exit 1; }
-fi
-# The render role builds the Python module too where it is configured (Python, NumPy, pybind11).
-if [ "$role" = render ] && grep -q '^build shadowref_python:' "$build_dir/build.ninja" 2>/dev/null; then
-  targets+=(shadowref_python)
 fi
 cmake --build "$build_dir" "${targets[@]}"
 

@@ -11,6 +11,7 @@ prefix=$(mktemp -d)
 trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix/usr" > /dev/null
 test -x "$prefix/usr/bin/shadowref"
+test -x "$prefix/usr/bin/shadowref-explore"  # `shadowref explore` hands over to it
 test -f "$prefix/usr/include/shadowref/shadowref.h"
 
 # The CMake package.
