@@ -52,9 +52,10 @@ std::vector<OracleLightFigures> writeOracleOutputs(const Scene& scene, const std
       // surface points instead of the rasterized ones.
       RasterStats stats;
       Framebuffer holder(1, 1);
-      const auto shadow = buildLightShadow(scene, scene.instances(), makeCameraView(scene), light, method == "tsm",
+      const std::vector<Instance> instances = scene.instances();
+      const auto shadow = buildLightShadow(scene, instances, makeCameraView(scene), light, method == "tsm",
                                            *makePipeline(PipelineKind::Fast, holder, 0), stats);
-      const ShadowMapErrors e = countShadowErrors(*shadow, o.hitPoint, o.lit, mask);
+      const ShadowMapErrors e = countShadowErrors(*shadow, o.hitPoint, o.lit, mask, oracle::hitPlanes(o, instances));
       f.mapPoints = e.points;
       f.mapFalseShadow = e.falseShadow;
       f.mapMissedShadow = e.missedShadow;

@@ -775,6 +775,7 @@ void FragmentProcessor::shadeAndWrite(const TriangleSetup& t, const Shading& f, 
   batch.x = f.x;
   batch.y = f.y;
   batch.depth = f.depth;
+  for (int i = 0; i < 3; ++i) batch.triangle[i] = t.v[i].source;
   for (int j = 0; j < varyingCount_; ++j) {
     const double a0 = t.v[0].source->varyings[size_t(j)], a1 = t.v[1].source->varyings[size_t(j)],
                  a2 = t.v[2].source->varyings[size_t(j)];

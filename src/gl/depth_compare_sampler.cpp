@@ -56,14 +56,20 @@ double DepthCompareSampler::sampleDivided(double s, double t, double r) const {
   return compareTexel(nearestTexel(s, texture->width), nearestTexel(t, texture->height), r);
 }
 
-double DepthCompareSampler::samplePcf(const glm::dvec4& strq, int k) const {
-  if (k <= 1) return sample(strq);
+double DepthCompareSampler::samplePcf(const glm::dvec4& strq, int k, DepthSlope slope) const {
+  if (k <= 1 && !slope.nearestToo) return sample(strq);
   const double s = strq.x / strq.w, t = strq.y / strq.w, r = strq.z / strq.w;
   const int cx = nearestTexel(s, texture->width), cy = nearestTexel(t, texture->height);
-  const int half = k / 2;
+  const int half = k > 1 ? k / 2 : 0;
+  // The nearest texel's centre from the point, in texels.
+  const double ox = double(cx) + 0.5 - s * double(texture->width);
+  const double oy = double(cy) + 0.5 - t * double(texture->height);
   double sum = 0.0;
   for (int dy = -half; dy <= half; ++dy)
-    for (int dx = -half; dx <= half; ++dx) sum += compareTexel(cx + dx, cy + dy, r);
+    for (int dx = -half; dx <= half; ++dx) {
+      const bool nearest = dx == 0 && dy == 0 && !slope.nearestToo;
+      sum += compareTexel(cx + dx, cy + dy, nearest ? r : r + (slope.x * (ox + dx) + slope.y * (oy + dy)));
+    }
   return sum / double((2 * half + 1) * (2 * half + 1));
 }
 

@@ -35,6 +35,14 @@ struct DepthTexture {
 // the edge (NaN and negatives to 0), as every sample below picks it.
 int nearestTexel(double coordinate, int size);
 
+// A receiver's depth slope in the map: how its plane's r/q changes from one texel to the next
+// along s (x) and t (y). Zero: the receiver is taken as facing the light (every tap compares r/q).
+// nearestToo: the nearest tap follows the plane to its texel's centre as well.
+struct DepthSlope {
+  double x = 0.0, y = 0.0;
+  bool nearestToo = false;
+};
+
 struct DepthCompareSampler {
   const DepthTexture* texture = nullptr;
   CompareFunc func = CompareFunc::LEqual;
@@ -48,8 +56,14 @@ struct DepthCompareSampler {
   // with the executor's vector kernels, exec/sampler_kernels.cpp).
   void sampleDivided(const double* s, const double* t, const double* r, int count, double* out) const;
   // k x k percentage-closer filtering around the nearest texel (k odd): the mean of the k^2
-  // comparisons, each 1 or failValue.
-  double samplePcf(const glm::dvec4& strq, int k) const;
+  // comparisons, each 1 or failValue. Each tap but the nearest compares the receiver's depth at
+  // its texel's centre (x_c + 0.5, y_c + 0.5), where the map pass drew that texel's depth:
+  // r/q + slope.x · (x_c + 0.5 − s/q · width) + slope.y · (y_c + 0.5 − t/q · height)
+  // (receiver-plane depth bias, [Isidoro 2006], who steps whole texels from the point instead:
+  // then a tap whose texel holds a flatter face beside a convex crease, with a smaller offset,
+  // can fail by the point's distance from its own texel's centre). The nearest tap compares r/q,
+  // as sample() does, unless slope.nearestToo (then also for k = 1).
+  double samplePcf(const glm::dvec4& strq, int k, DepthSlope slope = {}) const;
 
  private:
   double compareTexel(int x, int y, double r) const;

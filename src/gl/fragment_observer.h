@@ -27,6 +27,9 @@ struct FragmentEvent {
   // (gl/lighting.h, kVaryingPosition), which a shadow-map lookup starts from.
   int varyingCount = 0;
   std::array<double, 3> varyings{};
+  // The same three varyings at the triangle's vertices (FragmentInput::triangle): the receiver's
+  // plane, which a PCF lookup with receiver-plane depth bias follows.
+  std::array<std::array<double, 3>, 3> triangleVaryings{};
 };
 
 // A glClear that covered the watched pixel: what each buffer it clears held there before and after

@@ -13,6 +13,7 @@ void FragmentShader::shadeBatch(const FragmentBatch& batch, glm::dvec4* out) con
     in.depth = batch.depth[k];
     in.facing = batch.facing;
     in.varyings = varyings;
+    for (int i = 0; i < 3; ++i) in.triangle[i] = batch.triangle[i];
     out[k] = shade(in);
   }
 }

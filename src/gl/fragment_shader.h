@@ -17,6 +17,11 @@ struct FragmentInput {
   double depth = 0.0;        // window depth after offset and clamping
   Facing facing = FrontFacing;
   const double* varyings = nullptr;  // perspective-correct, varyingCount() of them
+  // The triangle's three vertices as set up (clipped vertices where clipping made them), whose
+  // varyings the fragment's are interpolated from: a shader that needs the primitive's plane
+  // (a shadow lookup's receiver plane) takes it from them. nullptr where no triangle is known
+  // (a vertex shaded alone).
+  const ClipVertex* triangle[3]{};
 };
 
 // Fragments of one triangle, shaded together: column by column (structure of arrays), so a
@@ -29,6 +34,7 @@ struct FragmentBatch {
   const int* y = nullptr;
   const double* depth = nullptr;    // depth[k]
   const double* varyings[kMaxVaryings]{};  // varyings[j][k]: varying j of fragment k
+  const ClipVertex* triangle[3]{};         // the triangle's vertices, as FragmentInput::triangle
 };
 
 class FragmentShader {

@@ -35,6 +35,7 @@ glm::dvec4 shadeFragment(const FragmentShader& shader, const TriangleSetup& t, i
   in.depth = depth;
   in.facing = t.facing;
   in.varyings = varyings;
+  for (int i = 0; i < 3; ++i) in.triangle[i] = t.v[i].source;
   return shader.shade(in);
 }
 

@@ -91,6 +91,10 @@ void processFragment(Framebuffer& fb, const RenderState& state, const FragmentSh
         interpolateVaryings(t, p.e[0], p.e[1], p.e[2], shader->varyingCount(), varyings);
         event.varyingCount = 3;
         event.varyings = {varyings[0], varyings[1], varyings[2]};
+        for (int i = 0; i < 3; ++i) {
+          const double* v = t.v[i].source->varyings.data();
+          event.triangleVaryings[size_t(i)] = {v[0], v[1], v[2]};
+        }
       }
     }
   }

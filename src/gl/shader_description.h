@@ -32,6 +32,9 @@ struct ShadowMapDescription {
   int pcf = 1;
   double constantBias = 0.0;
   bool outsideLit = false;
+  // The taps follow the receiver's plane (ShadowLookup::receiverPlaneBias): 0 off, 1 around the
+  // point (ReceiverPlaneBias::Kernel), 2 at the texels' centres (Texel).
+  uint8_t receiverPlaneBias = 0;
 };
 
 // One light's shadow test: one map, or six cube faces chosen by the direction from the light;

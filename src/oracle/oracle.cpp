@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "shadow/scene_view.h"
+#include "shadow/shadow_lookup.h"
 #include "oracle/camera_model.h"
 #include "oracle/edge_marks.h"
 #include "oracle/screen_bins.h"
@@ -204,6 +205,18 @@ OracleImage castOracle(const Scene& scene, const Light& light, const OracleOptio
   for (size_t i = 0; i < n; ++i) img.nearEdge[i] |= ambiguous[i];
   if (options.markNeighbourChanges) markNeighbourChanges(img);
   return img;
+}
+
+std::vector<glm::dvec4> hitPlanes(const OracleImage& image, const std::vector<Instance>& instances) {
+  std::vector<glm::dvec4> planes(image.hitInstance.size(), glm::dvec4(0.0));
+  for (size_t i = 0; i < planes.size(); ++i) {
+    if (image.hitInstance[i] < 0) continue;
+    const Instance& inst = instances.at(size_t(image.hitInstance[i]));
+    const glm::uvec3 t = inst.mesh->triangles.at(image.hitTriangle[i]);
+    auto world = [&](uint32_t v) { return glm::dvec3(inst.world * glm::dvec4(inst.mesh->positions[v], 1.0)); };
+    planes[i] = trianglePlane(world(t.x), world(t.y), world(t.z));
+  }
+  return planes;
 }
 
 }  // namespace shadowref::oracle

@@ -65,4 +65,9 @@ struct OracleImage {
 
 OracleImage castOracle(const Scene& scene, const Light& light, const OracleOptions& options = {});
 
+// The world plane (trianglePlane, shadow/shadow_lookup.h) of each pixel's hit triangle, (0, 0, 0,
+// 0) without a hit: what a shadow-map lookup with receiver-plane depth bias follows there.
+// `instances`: the scene's, as castOracle numbered them (Scene::instances()).
+std::vector<glm::dvec4> hitPlanes(const OracleImage& image, const std::vector<Instance>& instances);
+
 }  // namespace shadowref::oracle

@@ -77,6 +77,10 @@ enum class SilhouetteAlgorithm : uint8_t { Kuhn, YenKwoon, Kilgard, Lengyel };
 // What a directional light's standard map is fitted to: the casters that can shadow what the
 // camera sees (src/shadow/caster_fit.h), or the whole scene's box ([Hempe 2004, §5.1.2]).
 enum class MapFit : uint8_t { Casters, Scene };
+// What the depth a shadow-map tap compares follows ([Isidoro 2006], ShadowLookup): Off, the
+// fragment's own depth at every tap; Kernel, with PCF the receiver's plane at every tap's texel
+// centre (nearest sampling compares the fragment's depth); Texel, that for nearest sampling too.
+enum class ReceiverPlaneBias : uint8_t { Off, Kernel, Texel };
 
 // Parameters of the shadow algorithms; each technique reads the fields its registry entry lists.
 struct ShadowSettings {
@@ -97,6 +101,7 @@ struct ShadowSettings {
   double constantBias = 0.0;
   bool backFacesOnly = false;
   int pcf = 1;                    // k x k percentage-closer filtering; 1 = nearest
+  ReceiverPlaneBias receiverPlaneBias = ReceiverPlaneBias::Kernel;
   MapFit fit = MapFit::Casters;   // directional light, standard map
   double compareFail = 0.4;       // [Hempe 2004, §5.1.2]
   double focusRegion = 0.4;       // TSM 80 % rule ([Hempe 2004, §4.1])

@@ -36,6 +36,12 @@ const EnumNames<MapFit>& mapFitNames() {
   return names;
 }
 
+const EnumNames<ReceiverPlaneBias>& receiverPlaneBiasNames() {
+  static const EnumNames<ReceiverPlaneBias> names{
+      {"off", ReceiverPlaneBias::Off}, {"kernel", ReceiverPlaneBias::Kernel}, {"texel", ReceiverPlaneBias::Texel}};
+  return names;
+}
+
 const EnumNames<DepthFormat>& depthFormatNames() {
   static const EnumNames<DepthFormat> names{{"float32", DepthFormat::Float32}, {"unorm24", DepthFormat::Unorm24}};
   return names;
@@ -186,6 +192,9 @@ const std::vector<Field<ShadowSettings>>& shadowFields() {
          s.backFacesOnly = readBool(v, p);
        }},
       {"pcf", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.pcf = readInt(v, p, 1, 15); }},
+      {"receiver_plane_bias", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
+         s.receiverPlaneBias = readEnum(v, p, receiverPlaneBiasNames());
+       }},
       {"fit", [](const YamlValue& v, S& s, const std::string& p, Provenance&) { s.fit = readEnum(v, p, mapFitNames()); }},
       {"compare_fail", [](const YamlValue& v, S& s, const std::string& p, Provenance&) {
          s.compareFail = readNumberInRange(v, p, 0.0, 1.0);

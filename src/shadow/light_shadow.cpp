@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gl/clear.h"
+#include "gl/lighting.h"
 #include "shadow/caster_fit.h"
 #include "shadow/draw_tag.h"
 #include "shadow/focus_body.h"
@@ -22,6 +23,7 @@ void configureLookup(ShadowLookup& lookup, const DepthTexture& texture, const gl
   lookup.sampler.failValue = s.compareFail;
   lookup.pcf = s.pcf;
   lookup.constantBias = s.constantBias;
+  lookup.receiverPlaneBias = s.receiverPlaneBias;
 }
 
 // [Hempe 2004, §4.1]: the trapezoid of the focus body in the light's post-projective space.
@@ -84,7 +86,9 @@ void appendClippedTriangles(const Mesh& mesh, const HalfSpace& front, const Vert
 
 }  // namespace
 
-double pcfOffsetFactor(double offsetFactor, int pcf) { return offsetFactor * double(pcfKernelWidth(pcf)); }
+double pcfOffsetFactor(double offsetFactor, int pcf, ReceiverPlaneBias receiverPlaneBias) {
+  return receiverPlaneBias != ReceiverPlaneBias::Off ? offsetFactor : offsetFactor * double(pcfKernelWidth(pcf));
+}
 
 glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const std::vector<glm::dvec3>& body,
                             const glm::dvec3& anchor) {
@@ -111,18 +115,28 @@ glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const 
   return warp;
 }
 
-double LightShadow::factor(const glm::dvec3& p) const {
-  if (cube) return cubeLookup.factor(p);
-  if (trapezoidal && !((views[0].projection * (views[0].view * glm::dvec4(p, 1.0))).w > 0.0)) return 1.0;
-  return lookup.factor(p);
+glm::dvec4 receiverPlaneOf(const ClipVertex* const triangle[3]) {
+  if (!triangle[0] || !triangle[1] || !triangle[2]) return glm::dvec4(0.0);
+  auto position = [&](int i) {
+    const double* v = triangle[i]->varyings.data() + kVaryingPosition;
+    return glm::dvec3(v[0], v[1], v[2]);
+  };
+  return trianglePlane(position(0), position(1), position(2));
 }
 
-void LightShadow::factors(const double* x, const double* y, const double* z, int count, double* out) const {
+double LightShadow::factor(const glm::dvec3& p, const glm::dvec4& receiverPlane) const {
+  if (cube) return cubeLookup.factor(p, receiverPlane);
+  if (trapezoidal && !((views[0].projection * (views[0].view * glm::dvec4(p, 1.0))).w > 0.0)) return 1.0;
+  return lookup.factor(p, receiverPlane);
+}
+
+void LightShadow::factors(const double* x, const double* y, const double* z, int count, double* out,
+                          const glm::dvec4& receiverPlane) const {
   if (cube) {
-    for (int k = 0; k < count; ++k) out[k] = cubeLookup.factor({x[k], y[k], z[k]});
+    for (int k = 0; k < count; ++k) out[k] = cubeLookup.factor({x[k], y[k], z[k]}, receiverPlane);
     return;
   }
-  lookup.factors(x, y, z, count, out);
+  lookup.factors(x, y, z, count, out, receiverPlane);
   if (!trapezoidal) return;
   for (int k = 0; k < count; ++k)
     if (!((views[0].projection * (views[0].view * glm::dvec4(x[k], y[k], z[k], 1.0))).w > 0.0)) out[k] = 1.0;
@@ -142,7 +156,8 @@ DepthTexture renderDepthMap(const Scene& scene, const std::vector<Instance>& ins
   // [Hempe 2004, §3.2]: either polygon offset or only the back faces in the map.
   state.cull = scene.shadow.backFacesOnly ? CullMode::Front : CullMode::None;
   state.polygonOffset = {scene.shadow.offsetFactor != 0.0 || scene.shadow.offsetUnits != 0.0,
-                         pcfOffsetFactor(scene.shadow.offsetFactor, scene.shadow.pcf), scene.shadow.offsetUnits};
+                         pcfOffsetFactor(scene.shadow.offsetFactor, scene.shadow.pcf, scene.shadow.receiverPlaneBias),
+                         scene.shadow.offsetUnits};
   // A focused depth range (focusedDepthWarp) puts casters between the light and the focus body
   // before the near plane: clamped to depth 0 they still shadow everything behind them.
   state.depthClamp = depthClamp;

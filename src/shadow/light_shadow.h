@@ -49,11 +49,20 @@ struct LightShadow {
   // 1 where lit, the compare-fail value where shadowed, between them at PCF edges. Behind a spot
   // light (w ≤ 0 in its unwarped clip space) 1, as ShadowLookup does for a standard map: N_T's q
   // can be positive there.
-  double factor(const glm::dvec3& worldPosition) const;
-  // factor() of `count` points given as coordinate columns, into out[k] (ShadowLookup::factors).
-  void factors(const double* x, const double* y, const double* z, int count, double* out) const;
+  // `receiverPlane`: the world plane of the point's triangle (trianglePlane), which PCF with
+  // receiver-plane depth bias follows (ShadowLookup::receiverPlaneBias).
+  double factor(const glm::dvec3& worldPosition, const glm::dvec4& receiverPlane = glm::dvec4(0.0)) const;
+  // factor() of `count` points on one receiver plane given as coordinate columns, into out[k]
+  // (ShadowLookup::factors).
+  void factors(const double* x, const double* y, const double* z, int count, double* out,
+               const glm::dvec4& receiverPlane = glm::dvec4(0.0)) const;
   int mapCount() const { return cube ? 6 : 1; }
 };
+
+// The world plane (trianglePlane) of the triangle a fragment was interpolated from, from its
+// vertices' world positions (the varyings at kVaryingPosition, gl/lighting.h); no plane when the
+// fragment has no triangle (FragmentInput::triangle).
+glm::dvec4 receiverPlaneOf(const ClipVertex* const triangle[3]);
 
 // The world box the maps are fitted to: every instance's bounds.
 Aabb sceneBounds(const std::vector<Instance>& instances);
@@ -80,7 +89,9 @@ inline constexpr double kMinFocusedDepthHalfRange = 1e-6;
 glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const std::vector<glm::dvec3>& body,
                             const glm::dvec3& anchor);
 
-// The polygon offset factor the map pass uses for a k × k PCF lookup: `offsetFactor` × the
+// The polygon offset factor the map pass uses for a k × k PCF lookup without receiver-plane
+// depth bias (with it, `offsetFactor` unchanged: each tap compares the receiver's own plane
+// there, ShadowLookup::receiverPlaneBias): `offsetFactor` × the
 // kernel's width w (w = 2 · ⌊k/2⌋ + 1, the taps samplePcf reads). Why: a receiver is its own
 // caster in the map, a plane of depth slopes g_x, g_y per texel. The nearest tap's centre lies at
 // most half a texel from the point in each axis, the outer taps ⌊k/2⌋ texels further, so the
@@ -93,7 +104,7 @@ glm::dmat4 focusedDepthWarp(const glm::dmat4& NT, const LightView& light, const 
 // (peter-panning). The units term covers rounding, not the slope, and is left alone; so is a
 // constant bias.
 inline int pcfKernelWidth(int pcf) { return pcf > 1 ? 2 * (pcf / 2) + 1 : 1; }
-double pcfOffsetFactor(double offsetFactor, int pcf);
+double pcfOffsetFactor(double offsetFactor, int pcf, ReceiverPlaneBias receiverPlaneBias);
 
 // The light view of a standard (untrapezoidal) map of a directional or spot light: with
 // `shadow.fit: casters` a directional light's map is fitted to the casters that can shadow what

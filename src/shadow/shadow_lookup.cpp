@@ -1,5 +1,6 @@
 #include "shadow/shadow_lookup.h"
 
+#include <cmath>
 #include <cstring>
 
 namespace shadowref {
@@ -12,16 +13,42 @@ glm::dvec4 withConstantBias(const glm::dvec4& strq, double constantBias) {
   return {strq.x, strq.y, strq.z - constantBias * strq.w, strq.w};
 }
 
+glm::dvec4 trianglePlane(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  if (!(n != glm::dvec3(0.0))) return glm::dvec4(0.0);
+  return glm::dvec4(n, -glm::dot(n, a));
+}
+
+DepthSlope receiverDepthSlope(const glm::dmat4& T, const glm::dvec4& worldPlane, int width, int height) {
+  if (worldPlane == glm::dvec4(0.0)) return {};
+  const glm::dvec4 p = glm::transpose(glm::inverse(T)) * worldPlane;
+  const DepthSlope slope{-p.x / (p.z * double(width)), -p.y / (p.z * double(height))};
+  if (!(std::isfinite(slope.x) && std::isfinite(slope.y))) return {};
+  return slope;
+}
+
 namespace {
 // Outside the map's square (a NaN is not outside: the sampler handles it as before).
 bool outsideMap(double s, double t) { return s < 0.0 || s > 1.0 || t < 0.0 || t > 1.0; }
 }  // namespace
 
-double ShadowLookup::factor(const glm::dvec3& worldPosition) const {
+DepthSlope ShadowLookup::tapSlope(const glm::dvec4& receiverPlane) const {
+  const bool texel = receiverPlaneBias == ReceiverPlaneBias::Texel;
+  if (!sampler.texture || !(texel || (receiverPlaneBias == ReceiverPlaneBias::Kernel && pcf > 1))) return {};
+  DepthSlope slope = receiverDepthSlope(textureMatrix, receiverPlane, sampler.texture->width, sampler.texture->height);
+  slope.nearestToo = true;  // every tap of a PCF kernel, and the one tap of nearest sampling with Texel
+  return slope;
+}
+
+double ShadowLookup::factorOnSlope(const glm::dvec3& worldPosition, DepthSlope slope) const {
   const glm::dvec4 strq = withConstantBias(shadowCoordinates(textureMatrix, worldPosition), constantBias);
   if (!(strq.w > 0.0)) return 1.0;
   if (outsideLit && outsideMap(strq.x / strq.w, strq.y / strq.w)) return 1.0;
-  return pcf > 1 ? sampler.samplePcf(strq, pcf) : sampler.sample(strq);
+  return pcf > 1 || slope.nearestToo ? sampler.samplePcf(strq, pcf, slope) : sampler.sample(strq);
+}
+
+double ShadowLookup::factor(const glm::dvec3& worldPosition, const glm::dvec4& receiverPlane) const {
+  return factorOnSlope(worldPosition, tapSlope(receiverPlane));
 }
 
 namespace {
@@ -31,9 +58,10 @@ using v4d = double __attribute__((vector_size(32)));
 constexpr int kMaxPoints = 64;  // a fragment batch (kMaxBatch)
 }  // namespace
 
-void ShadowLookup::factors(const double* x, const double* y, const double* z, int count, double* out) const {
+void ShadowLookup::factors(const double* x, const double* y, const double* z, int count, double* out,
+                           const glm::dvec4& receiverPlane) const {
   int k = 0;
-  if (pcf <= 1 && count <= kMaxPoints) {
+  if (pcf <= 1 && receiverPlaneBias != ReceiverPlaneBias::Texel && count <= kMaxPoints) {
     // The points behind a perspective light (q <= 0) are sampled too (at meaningless
     // coordinates, clamped to the map) and then given 1.
     double divided[3][kMaxPoints];
@@ -58,12 +86,14 @@ void ShadowLookup::factors(const double* x, const double* y, const double* z, in
     for (int i = 0; i < k; ++i)
       if (behind[i] || (outsideLit && outsideMap(divided[0][i], divided[1][i]))) out[i] = 1.0;
   }
-  for (; k < count; ++k) out[k] = factor({x[k], y[k], z[k]});
+  if (k == count) return;
+  const DepthSlope slope = tapSlope(receiverPlane);  // one plane for all of them
+  for (; k < count; ++k) out[k] = factorOnSlope({x[k], y[k], z[k]}, slope);
 }
 
-double CubeShadowLookup::factor(const glm::dvec3& worldPosition) const {
+double CubeShadowLookup::factor(const glm::dvec3& worldPosition, const glm::dvec4& receiverPlane) const {
   const CubeFace face = cubeFaceFor(worldPosition - lightPosition);
-  return faces[size_t(face)].factor(worldPosition);
+  return faces[size_t(face)].factor(worldPosition, receiverPlane);
 }
 
 }  // namespace shadowref

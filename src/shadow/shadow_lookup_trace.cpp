@@ -22,7 +22,7 @@ bool compare(CompareFunc func, float r, float d) {
 
 }  // namespace
 
-ShadowLookupTrace traceShadowLookup(const LightShadow& shadow, const glm::dvec3& p) {
+ShadowLookupTrace traceShadowLookup(const LightShadow& shadow, const glm::dvec3& p, const glm::dvec4& receiverPlane) {
   ShadowLookupTrace trace;
   const ShadowLookup* lookup = &shadow.lookup;
   if (shadow.cube) {
@@ -51,7 +51,7 @@ ShadowLookupTrace traceShadowLookup(const LightShadow& shadow, const glm::dvec3&
         trace.behindLight || !((shadow.views[0].projection * (shadow.views[0].view * glm::dvec4(p, 1.0))).w > 0.0);
   trace.outsideMap = !trace.behindLight && lookup->outsideLit &&
                      (trace.s < 0.0 || trace.s > 1.0 || trace.t < 0.0 || trace.t > 1.0);
-  trace.result = shadow.factor(p);
+  trace.result = shadow.factor(p, receiverPlane);
   return trace;
 }
 

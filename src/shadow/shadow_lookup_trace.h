@@ -25,6 +25,8 @@ struct ShadowLookupTrace {
   double result = 1.0;              // LightShadow::factor(p): 1 lit, the compare-fail value shadowed
 };
 
-ShadowLookupTrace traceShadowLookup(const LightShadow& shadow, const glm::dvec3& worldPosition);
+// `receiverPlane`: the world plane of the point's triangle, as LightShadow::factor takes it.
+ShadowLookupTrace traceShadowLookup(const LightShadow& shadow, const glm::dvec3& worldPosition,
+                                    const glm::dvec4& receiverPlane = glm::dvec4(0.0));
 
 }  // namespace shadowref

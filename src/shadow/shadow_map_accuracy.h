@@ -22,8 +22,10 @@ struct ShadowMapErrors {
 };
 
 // Compares the map's verdict at points[i] with visible[i] (1: the light sees it) wherever
-// mask[i] is set; all three have the same length.
+// mask[i] is set; all three have the same length. planes[i]: the receiver plane at points[i]
+// (LightShadow::factor), same length too, or empty for none.
 ShadowMapErrors countShadowErrors(const LightShadow& shadow, const std::vector<glm::dvec3>& points,
-                                  const std::vector<uint8_t>& visible, const std::vector<uint8_t>& mask);
+                                  const std::vector<uint8_t>& visible, const std::vector<uint8_t>& mask,
+                                  const std::vector<glm::dvec4>& planes = {});
 
 }  // namespace shadowref

@@ -30,7 +30,8 @@ namespace shadowref {
 namespace {
 
 ShadowMapDescription describeLookup(const ShadowLookup& l) {
-  return {l.textureMatrix, l.sampler.texture, l.sampler.func, l.sampler.failValue, l.pcf, l.constantBias, l.outsideLit};
+  return {l.textureMatrix, l.sampler.texture, l.sampler.func, l.sampler.failValue,
+          l.pcf,           l.constantBias,      l.outsideLit,   uint8_t(l.receiverPlaneBias)};
 }
 
 LightShadowDescription describeLightShadow(const LightShadow& s) {
@@ -83,12 +84,13 @@ class ShadowMappedShader final : public FragmentShader {
     double factor[kMaxBatch];
     for (double* channel : c) std::fill_n(channel, batch.count, 0.0);
     const double share = 1.0 / double(shadows_.size());
+    const glm::dvec4 plane = receiverPlaneOf(batch.triangle);
     for (size_t i = 0; i < shadows_.size(); ++i) {
       if (inRange_[i]) lightContributions(batch, terms_[i], eye_, light[0], light[1], light[2]);
       else
         for (double* channel : light) std::fill_n(channel, batch.count, 0.0);
       shadows_[i]->factors(batch.varyings[kVaryingPosition], batch.varyings[kVaryingPosition + 1],
-                           batch.varyings[kVaryingPosition + 2], batch.count, factor);
+                           batch.varyings[kVaryingPosition + 2], batch.count, factor, plane);
       for (int j = 0; j < 3; ++j) {
         const double ambientShare = ambient_[j] * share;
         for (int k = 0; k < batch.count; ++k) c[j][k] += (ambientShare + light[j][k]) * factor[k];
@@ -104,9 +106,10 @@ class ShadowMappedShader final : public FragmentShader {
     if (shadows_.empty()) return glm::dvec4(ambient_, 1.0);
     glm::dvec3 c(0.0);
     const double share = 1.0 / double(shadows_.size());
+    const glm::dvec4 plane = receiverPlaneOf(in.triangle);
     for (size_t i = 0; i < shadows_.size(); ++i) {
       const glm::dvec3 light = inRange_[i] ? lightContribution(terms_[i], p, n, eye_) : glm::dvec3(0.0);
-      c += (ambient_ * share + light) * shadows_[i]->factor(p);
+      c += (ambient_ * share + light) * shadows_[i]->factor(p, plane);
     }
     return glm::dvec4(c, 1.0);
   }
@@ -145,9 +148,10 @@ class ShadowMappedGouraudShader final : public FragmentShader {
     double c[3][kMaxBatch];
     double factor[kMaxBatch];
     for (double* channel : c) std::fill_n(channel, batch.count, 0.0);
+    const glm::dvec4 plane = receiverPlaneOf(batch.triangle);
     for (size_t i = 0; i < shadows_.size(); ++i) {
       shadows_[i]->factors(batch.varyings[kVaryingPosition], batch.varyings[kVaryingPosition + 1],
-                           batch.varyings[kVaryingPosition + 2], batch.count, factor);
+                           batch.varyings[kVaryingPosition + 2], batch.count, factor, plane);
       for (int j = 0; j < 3; ++j) {
         const double* colour = batch.varyings[size_t(kFirstColor) + 3 * i + size_t(j)];
         for (int k = 0; k < batch.count; ++k) c[j][k] += colour[k] * factor[k];
@@ -160,9 +164,10 @@ class ShadowMappedGouraudShader final : public FragmentShader {
     const double* v = in.varyings;
     const glm::dvec3 p(v[kVaryingPosition], v[kVaryingPosition + 1], v[kVaryingPosition + 2]);
     glm::dvec3 c(0.0);
+    const glm::dvec4 plane = receiverPlaneOf(in.triangle);
     for (size_t i = 0; i < shadows_.size(); ++i) {
       const double* colour = v + kFirstColor + 3 * i;
-      c += glm::dvec3(colour[0], colour[1], colour[2]) * shadows_[i]->factor(p);
+      c += glm::dvec3(colour[0], colour[1], colour[2]) * shadows_[i]->factor(p, plane);
     }
     return glm::dvec4(c, 1.0);
   }
@@ -401,13 +406,14 @@ void renderShadowMaps(const Scene& scene, ShadowMapKind kind, const FrameOptions
 // The techniques of this file (technique_registry.cpp lists them).
 namespace {
 
-constexpr std::array<TechniqueSetting, 7> kMapSettings = {{
+constexpr std::array<TechniqueSetting, 8> kMapSettings = {{
     {"map_size", "8 to 8192"},
     {"offset_factor", "a number"},
     {"offset_units", "a number"},
     {"bias", "a number"},
     {"back_faces_only", "true or false"},
     {"pcf", "1 to 15"},
+    {"receiver_plane_bias", "kernel, texel or off"},
     {"compare_fail", "0 to 1"},
 }};
 
@@ -433,10 +439,17 @@ std::string number(double x) {
   return buf;
 }
 
+// The receiver-plane bias where it is not the default or does not apply unchanged.
+std::string receiverPlaneNote(const ShadowSettings& s) {
+  if (s.receiverPlaneBias == ReceiverPlaneBias::Texel) return ", receiver plane at texel centres";
+  return s.pcf > 1 && s.receiverPlaneBias == ReceiverPlaneBias::Off ? " without receiver-plane bias" : "";
+}
+
 std::string describeMapSettings(const ShadowSettings& s) {
   return "map " + std::to_string(s.mapSize) + " x " + std::to_string(s.mapSize) + ", offset " + number(s.offsetFactor) +
          " / " + number(s.offsetUnits) + ", bias " + number(s.constantBias) +
-         (s.backFacesOnly ? ", back faces only" : "") + ", pcf " + std::to_string(s.pcf) + ", compare fail " +
+         (s.backFacesOnly ? ", back faces only" : "") + ", pcf " + std::to_string(s.pcf) +
+         receiverPlaneNote(s) + ", compare fail " +
          number(s.compareFail);
 }
 

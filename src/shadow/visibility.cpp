@@ -56,11 +56,11 @@ class VisibilityLookup {
     for (ShadowLookup& face : cube_.faces) face.sampler.failValue = 0.0;
   }
 
-  double at(const glm::dvec3& p) const {
-    if (shadow_->cube) return cube_.factor(p);
+  double at(const glm::dvec3& p, const glm::dvec4& receiverPlane) const {
+    if (shadow_->cube) return cube_.factor(p, receiverPlane);
     const LightView& v = shadow_->views[0];
     if (shadow_->trapezoidal && !((v.projection * (v.view * glm::dvec4(p, 1.0))).w > 0.0)) return 1.0;
-    return lookup_.factor(p);
+    return lookup_.factor(p, receiverPlane);
   }
 
  private:
@@ -80,7 +80,8 @@ class VisibilityShader final : public FragmentShader {
   glm::dvec4 shade(const FragmentInput& in) const override {
     const glm::dvec3 p(in.varyings[kVaryingPosition], in.varyings[kVaryingPosition + 1], in.varyings[kVaryingPosition + 2]);
     glm::dvec4 out(1.0);
-    for (size_t i = 0; i < lookups_.size(); ++i) out[int(i)] = lookups_[i].at(p);
+    const glm::dvec4 plane = receiverPlaneOf(in.triangle);
+    for (size_t i = 0; i < lookups_.size(); ++i) out[int(i)] = lookups_[i].at(p, plane);
     return out;
   }
 

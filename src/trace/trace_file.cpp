@@ -136,7 +136,7 @@ void Encoder::shader(const ShaderDescription& d, const std::vector<uint32_t>& te
       f64(m.failValue);
       i32(m.pcf);
       f64(m.constantBias);
-      u8(m.outsideLit);
+      u8(uint8_t((m.outsideLit ? 1u : 0u) | (unsigned(m.receiverPlaneBias) << 1)));  // the map flags
     }
   }
 }
@@ -502,7 +502,11 @@ class Parser {
           map.failValue = c.f64In("compare-fail value", 0.0, 1.0);
           map.pcf = c.intIn("PCF kernel", 1, kMaxPcf);
           map.constantBias = c.f64In("constant bias", -1.0, 1.0);
-          map.outsideLit = c.flag("outside lit");
+          const uint64_t flagsAt = c.at();
+          const uint8_t flags = c.u8("map flags");
+          if (flags > 5) c.failAt(flagsAt, "map flags are " + std::to_string(flags) + ", expected 0 to 5");
+          map.outsideLit = (flags & 1u) != 0;
+          map.receiverPlaneBias = uint8_t(flags >> 1);
           l.maps.push_back(map);
         }
         d.shadows.push_back(std::move(l));

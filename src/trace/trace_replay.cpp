@@ -25,6 +25,7 @@ ShadowLookup lookupOf(const ShadowMapDescription& m) {
   l.pcf = m.pcf;
   l.constantBias = m.constantBias;
   l.outsideLit = m.outsideLit;
+  l.receiverPlaneBias = ReceiverPlaneBias(m.receiverPlaneBias);
   return l;
 }
 

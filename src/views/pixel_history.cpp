@@ -44,7 +44,13 @@ void PixelHistory::onFragment(const FragmentEvent& event) {
   // traced from the world position the shader read (the fragment's first three varyings).
   if (event.varyingCount >= 3 && !shadows_.empty() && drawKindOf(event.drawTag) == DrawKind::Lit) {
     const glm::dvec3 p(event.varyings[0], event.varyings[1], event.varyings[2]);
-    for (size_t l = 0; l < shadows_.size(); ++l) step.lookups.push_back({l, shadows_[l]->light.name, traceShadowLookup(*shadows_[l], p)});
+    auto vertex = [&](size_t i) {
+      const std::array<double, 3>& v = event.triangleVaryings[i];
+      return glm::dvec3(v[0], v[1], v[2]);
+    };
+    const glm::dvec4 plane = trianglePlane(vertex(0), vertex(1), vertex(2));
+    for (size_t l = 0; l < shadows_.size(); ++l)
+      step.lookups.push_back({l, shadows_[l]->light.name, traceShadowLookup(*shadows_[l], p, plane)});
   }
   current().steps.push_back(std::move(step));
 }

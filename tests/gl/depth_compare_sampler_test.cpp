@@ -81,6 +81,25 @@ TEST_CASE("PCF 3x3 averages the nine comparisons around the nearest texel", "[ra
   CHECK(sm.samplePcf({0.3, 0.6, 0.3, 1.0}, 1) == 0.4);
 }
 
+TEST_CASE("PCF with a depth slope compares each tap at the receiver's depth there", "[raster][sampler]") {
+  // A 4x4 map of a sloped receiver: D = 0.3 + 0.1 x at texel column x. At texel (1, 1) with
+  // r = 0.39 (just in front of D = 0.4) the tap of column 0 holds 0.3 < 0.39.
+  DepthTexture tex = DepthTexture::filled(4, 4, 0.0f);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) tex.set(x, y, float(0.3 + 0.1 * x));
+  const DepthCompareSampler sm{&tex};
+  const glm::dvec4 strq(1.5 / 4.0, 1.5 / 4.0, 0.39, 1.0);
+  // Every tap compares 0.39: column 0 fails (3 taps) -> (6 + 3 * 0.4) / 9.
+  CHECK(sm.samplePcf(strq, 3) == Approx(7.2 / 9.0).epsilon(1e-15));
+  // With the receiver's slope, 0.1 per texel along x: the taps compare 0.29, 0.39, 0.49, all pass.
+  CHECK(sm.samplePcf(strq, 3, {0.1, 0.0}) == 1.0);
+  // A slope along the wrong axis helps nothing; twice the slope fails the other side's column.
+  CHECK(sm.samplePcf(strq, 3, {0.0, 0.1}) == Approx(7.2 / 9.0).epsilon(1e-15));
+  CHECK(sm.samplePcf(strq, 3, {0.2, 0.0}) == Approx(7.2 / 9.0).epsilon(1e-15));  // 0.59 > 0.5
+  // The centre tap alone (k = 1) ignores the slope.
+  CHECK(sm.samplePcf({1.5 / 4.0, 1.5 / 4.0, 0.41, 1.0}, 1, {0.1, 0.0}) == 0.4);
+}
+
 TEST_CASE("sampleDivided of many points gives each point's own lookup, for every length and func", "[raster][sampler]") {
   // The batch lookup finds every texel first and compares afterwards, vector by vector, in runs
   // of at most a fragment batch; each result must be the one-point lookup's, whatever the count

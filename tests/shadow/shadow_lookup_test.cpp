@@ -68,6 +68,68 @@ TEST_CASE("PCF 3x3 averages nine comparisons of 1 or the fail value", "[shadowma
   CHECK(lookup.factor({-0.9, -0.25, 0.0}) == 0.4);
 }
 
+TEST_CASE("receiverDepthSlope: a world plane's depth change per texel, by hand and by projection", "[shadowmap]") {
+  // T = bias: s = (x + 1)/2, t = (y + 1)/2, r = (z + 1)/2. The plane z = 0.2 x + 0.4 y + 0.1 has
+  // dr/ds = dz/dx = 0.2 and dr/dt = 0.4; per texel of a 4 x 8 map 0.05 and 0.05.
+  auto onPlane = [](double x, double y) { return glm::dvec3(x, y, 0.2 * x + 0.4 * y + 0.1); };
+  const glm::dvec4 plane = trianglePlane(onPlane(0.0, 0.0), onPlane(1.0, 0.0), onPlane(0.0, 1.0));
+  const DepthSlope slope = receiverDepthSlope(biasMatrix(), plane, 4, 8);
+  CHECK_THAT(slope.x, WithinAbs(0.05, 1e-15));
+  CHECK_THAT(slope.y, WithinAbs(0.05, 1e-15));
+  // The vertex order (the plane's sign) does not matter.
+  const DepthSlope flipped = receiverDepthSlope(biasMatrix(), trianglePlane(onPlane(0.0, 0.0), onPlane(0.0, 1.0), onPlane(1.0, 0.0)), 4, 8);
+  CHECK_THAT(flipped.x, WithinAbs(0.05, 1e-15));
+  CHECK_THAT(flipped.y, WithinAbs(0.05, 1e-15));
+  // Edge-on to the light (the plane x = 0.3 holds the rays along z), or no plane: no slope.
+  const DepthSlope edgeOn = receiverDepthSlope(biasMatrix(), glm::dvec4(1.0, 0.0, 0.0, -0.3), 4, 8);
+  CHECK((edgeOn.x == 0.0 && edgeOn.y == 0.0));
+  const DepthSlope none = receiverDepthSlope(biasMatrix(), trianglePlane({0, 0, 0}, {1, 1, 1}, {2, 2, 2}), 4, 8);
+  CHECK((none.x == 0.0 && none.y == 0.0));
+
+  // A spot light's perspective map: r/q is affine in (s/q, t/q) over a plane, with the slope the
+  // function gives; checked against points of the plane projected one by one.
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {1.0, 5.0, 0.5};
+  spot.direction = {-0.2, -1.0, 0.1};
+  const glm::dmat4 T = textureMatrix(spotLightView(spot, box({-2.0, 0.0, -2.0}, {2.0, 1.0, 2.0})));
+  auto tilted = [](double x, double z) { return glm::dvec3(x, 0.3 * x - 0.5 * z + 0.2, z); };
+  const int size = 256;
+  const DepthSlope s = receiverDepthSlope(T, trianglePlane(tilted(-1.0, -1.0), tilted(1.0, -1.0), tilted(0.0, 1.0)), size, size);
+  for (const glm::dvec2& a : {glm::dvec2(0.1, 0.2), glm::dvec2(-0.7, 0.4), glm::dvec2(0.5, -0.9)})
+    for (const glm::dvec2& b : {glm::dvec2(0.3, 0.3), glm::dvec2(-0.2, -0.6)}) {
+      const glm::dvec4 pa = T * glm::dvec4(tilted(a.x, a.y), 1.0), pb = T * glm::dvec4(tilted(b.x, b.y), 1.0);
+      const double ds = (pb.x / pb.w - pa.x / pa.w) * size, dt = (pb.y / pb.w - pa.y / pa.w) * size;
+      CHECK_THAT(pb.z / pb.w - pa.z / pa.w, WithinAbs(s.x * ds + s.y * dt, 1e-12));
+    }
+}
+
+TEST_CASE("PCF with receiver-plane bias: a sloped receiver's own map passes every tap", "[shadowmap]") {
+  // A 16 x 16 map of the plane z = 0.6 x + 0.1 through T = bias (r = (z + 1)/2), drawn with no
+  // offset: each texel holds the plane's depth at its centre. A point on the plane at a texel's
+  // centre (minus a hair for rounding) passes its own tap; a fixed r fails the taps nearer the light.
+  const int n = 16;
+  DepthTexture map = uniformTexture(n, 0.0f);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) map.set(x, y, float((0.6 * (2.0 * (x + 0.5) / n - 1.0) + 0.1 + 1.0) / 2.0));
+  ShadowLookup lookup;
+  lookup.textureMatrix = biasMatrix();
+  lookup.sampler.texture = &map;
+  lookup.pcf = 3;
+  lookup.constantBias = 1e-6;
+  auto onPlane = [](double x, double y) { return glm::dvec3(x, y, 0.6 * x + 0.1); };
+  const glm::dvec4 plane = trianglePlane(onPlane(0.0, 0.0), onPlane(1.0, 0.0), onPlane(0.0, 1.0));
+  const glm::dvec3 p = onPlane(2.0 * 7.5 / n - 1.0, 2.0 * 5.5 / n - 1.0);  // texel (7, 5)'s centre
+  CHECK(lookup.factor(p) == Approx((6.0 + 3.0 * 0.4) / 9.0).epsilon(1e-12));  // column 6 nearer
+  CHECK(lookup.factor(p, plane) == Approx((6.0 + 3.0 * 0.4) / 9.0).epsilon(1e-12));  // the bias is off
+  lookup.receiverPlaneBias = ReceiverPlaneBias::Kernel;
+  CHECK(lookup.factor(p, plane) == 1.0);
+  CHECK(lookup.factor(p) == Approx((6.0 + 3.0 * 0.4) / 9.0).epsilon(1e-12));  // no plane known
+  // A real occluder in column 8 (nearer than the plane by more than its slope) still shadows.
+  for (int y = 0; y < n; ++y) map.set(8, y, 0.1f);
+  CHECK(lookup.factor(p, plane) == Approx((6.0 + 3.0 * 0.4) / 9.0).epsilon(1e-12));
+}
+
 TEST_CASE("shadow lookup behind a perspective light (q <= 0) does not shadow", "[shadowmap]") {
   DepthTexture map = uniformTexture(2, 0.0f);  // everything would be shadowed
   Light spot;

@@ -124,7 +124,7 @@ TEST_CASE("TSM reads the shadow map's settings but its fit, in their order, and 
     return out;
   };
   const std::vector<std::string> common = {"map_size", "offset_factor", "offset_units", "bias", "back_faces_only",
-                                           "pcf", "compare_fail"};
+                                           "pcf", "receiver_plane_bias", "compare_fail"};
   std::vector<std::string> map = common;
   map.push_back("fit");
   CHECK(keys("shadowmap") == map);
