@@ -4,6 +4,7 @@
 #   scripts/conformance-report.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/doc-section.sh
 build_dir=${1:-build}
 cmake --build "$build_dir" --target conformance_tests >/dev/null
 binary="$build_dir/tests/conformance_tests"
@@ -21,9 +22,5 @@ trap 'rm -f "$rows" "$table"' EXIT
   sort -s -t'|' -k2,2 "$rows"
 } >"$table"
 doc=docs/conformance.md
-awk -v table="$table" '
-  /<!-- conformance-table:begin -->/ { print; while ((getline line < table) > 0) print line; skipping = 1; next }
-  /<!-- conformance-table:end -->/ { skipping = 0 }
-  !skipping { print }
-' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+doc_section_replace conformance-table "$table" "$doc"
 echo "conformance-report: $(wc -l <"$rows") rows written to $doc"

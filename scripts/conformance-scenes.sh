@@ -8,6 +8,7 @@
 #   scripts/conformance-scenes.sh [--check] [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/doc-section.sh
 check=false
 if [ "${1:-}" = "--check" ]; then
   check=true
@@ -66,7 +67,7 @@ table="$work/table.md"
 doc=docs/conformance.md
 if $check; then
   documented="$work/documented.md"
-  awk '/<!-- conformance-scenes:end -->/ { inside = 0 } inside { print } /<!-- conformance-scenes:begin -->/ { inside = 1 }' "$doc" >"$documented"
+  doc_section_print conformance-scenes "$doc" >"$documented"
   if ! diff -u "$documented" "$table"; then
     echo "conformance-scenes: $doc differs from what shadowref replay reports (above; run scripts/conformance-scenes.sh)" >&2
     exit 1
@@ -74,9 +75,5 @@ if $check; then
   echo "conformance-scenes: $doc agrees with shadowref replay ($(($(wc -l <"$table") - 2)) rows)"
   exit 0
 fi
-awk -v table="$table" '
-  /<!-- conformance-scenes:begin -->/ { print; while ((getline line < table) > 0) print line; skipping = 1; next }
-  /<!-- conformance-scenes:end -->/ { skipping = 0 }
-  !skipping { print }
-' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+doc_section_replace conformance-scenes "$table" "$doc"
 echo "conformance-scenes: $(($(wc -l <"$table") - 2)) rows written to $doc"
