@@ -64,21 +64,23 @@ function showError(text) {
   box.textContent = text || '';
 }
 
-// ---- frames. The server renders one request at a time, and a request waiting behind another
-// would show a state older than the newest input by the time it is rendered, so at most one
-// request is out at a time; the next is sent the moment the server has answered the last (its
-// headers arrive once the frame is rendered and encoded), so that the server renders frame n+1
-// while the browser receives, decodes and draws frame n. Input only marks the state as changed:
-// however many mouse moves arrive meanwhile, the next request asks for the newest state, and a
-// frame older than the one shown is dropped.
-let waiting = false;    // a request whose answer has not arrived
+// ---- frames. The server renders one request at a time. Two requests are out at a time: while the
+// server renders one, the next waits at the server, so that it starts the moment the last is done,
+// and the browser receives, decodes and draws the frame before; with one out, the server waited a
+// round trip for every frame. Input only marks the state as changed: however many mouse moves
+// arrive meanwhile, the next request asks for the newest state, and a frame older than the one
+// shown is dropped. The server answers a request that waited while a newer one arrived with 204
+// and renders only the newer; should the two arrive the other way round, the newest state is the
+// one answered 204, and it is asked for again.
+let inFlight = 0;       // requests whose answers have not arrived
+const kMaxInFlight = 2;
 let decoding = 0;       // answers being received, decoded and drawn, or waiting to be
 const kMaxDecoding = 2;  // more would only queue behind the decoder
-let dirty = false, version = 0, shownVersion = 0;
+let dirty = false, version = 0, shownVersion = 0, askedVersion = 0;
 let statusShown = -Infinity;  // when the server's time was last written under the title
 const inputTimes = new Map();  // state version -> time of the input that made it
 // For the tests: whether the picture shows the newest state, and the state's -D values.
-window.exploreIdle = () => !waiting && decoding === 0 && !dirty;
+window.exploreIdle = () => inFlight === 0 && decoding === 0 && !dirty;
 window.exploreOverrides = () => overrides();
 
 function changed() {
@@ -89,10 +91,11 @@ function changed() {
 }
 
 function pump() {
-  if (!dirty || waiting || decoding >= kMaxDecoding) return;
+  if (!dirty || inFlight >= kMaxInFlight || decoding >= kMaxDecoding) return;
   dirty = false;
-  waiting = true;
+  inFlight += 1;
   const asked = version;
+  askedVersion = asked;
   const d = overrides();
   $('state').textContent = d.map((o) => '-D ' + o).join(' ') || '(the scene as written)';
   // PNG for pictures without per-pixel values: a fraction of the bytes, decoded off the page's
@@ -103,7 +106,7 @@ function pump() {
   fetch('api/frame?' + query(params), { cache: 'no-store' }).then(
     (response) => receive(asked, response),
     (e) => {
-      waiting = false;
+      inFlight -= 1;
       exploreStats.errors += 1;
       showError('the server does not answer: ' + e);
     });
@@ -122,7 +125,7 @@ async function decodePng(response) {
 // would be dropped.
 let decoded = Promise.resolve();
 function receive(asked, response) {
-  waiting = false;
+  inFlight -= 1;
   decoding += 1;
   pump();  // the newest state renders while this frame is decoded and drawn
   decoded = decoded.then(() => show(asked, response));
@@ -132,6 +135,7 @@ async function show(asked, response) {
   try {
     if (response.status === 204 || asked < shownVersion) {
       exploreStats.superseded += 1;  // a newer state was asked for, or is shown already
+      if (response.status === 204 && asked === askedVersion && asked > shownVersion) dirty = true;
     } else if (!response.ok) {
       exploreStats.errors += 1;
       showError(await response.text());
