@@ -1,9 +1,9 @@
 // The explorer's page. Every state is a list of `-D key=value` overrides, exactly as
 // `shadowref render` takes them: the server renders the state, and the same -D values on the
-// command line give the same picture. One frame request is out at a time, sent as soon as the
-// last one is answered, so the server renders the next frame while the browser decodes and draws
-// this one; input that arrives meanwhile only marks the state as changed, so the newest state is
-// rendered next, no stale frame queues up, and a frame older than the one shown is dropped.
+// command line give the same picture. Two frame requests are out at a time, so the server renders
+// the next frame while it sends this one and the browser decodes and draws the one before; input
+// that arrives meanwhile only marks the state as changed, so the newest state is rendered next, no
+// stale frame queues up, and a frame older than the one shown is dropped.
 'use strict';
 
 const $ = (id) => document.getElementById(id);
