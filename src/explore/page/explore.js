@@ -193,6 +193,7 @@ function drawFrame(headers, picture) {
     picture.close();
   }
   lastImage = { width, height, values, valueName, info };
+  drawLightMarks();  // the markers of the state of this frame or later, drawn with it
   // While orbiting, the key stays the same frame after frame: rebuilt only when it changes.
   if (infoText !== lastInfo.text || state.view !== lastInfo.view) {
     showKey(info);
@@ -521,7 +522,14 @@ function drawLightMarks() {
       g.fillText(l.name + (l.on ? '' : ' (off)'), m.col + kMarkerRadius + 3, m.row + 4);
     }
   }
-  requestAnimationFrame(drawLightMarks);
+}
+
+// The markers are drawn with each frame shown (drawFrame), and between frames only while none is
+// on its way (a light selected): redrawn with every mouse move while orbiting, the overlay was
+// drawn and composited two to three times for every frame shown.
+function drawLightMarksWhenIdle() {
+  if (window.exploreIdle()) drawLightMarks();
+  requestAnimationFrame(drawLightMarksWhenIdle);
 }
 
 function wireLightDrag() {
@@ -551,7 +559,7 @@ function wireLightDrag() {
     changed();
   });
   window.addEventListener('mouseup', () => { dragging = null; });
-  requestAnimationFrame(drawLightMarks);
+  requestAnimationFrame(drawLightMarksWhenIdle);
 }
 // For the tests: where light i's marker is on the picture (canvas pixels), or null.
 window.exploreLightMarker = (i) => lightMarkers().find((m) => m.i === i) || null;
