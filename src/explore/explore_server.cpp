@@ -267,42 +267,52 @@ void addRoutes(httplib::Server& server, Explorer& explorer) {
       });
     });
   });
-  // One view as raw bytes: RGBA, top row first, then (X-Values) one float32 per pixel. Raw pixels
-  // cost nothing to encode, and a local connection carries them faster than any encoder runs.
+  // One view: a PNG (encoding=png, views without values), or raw bytes: RGBA, top row first, then
+  // (X-Values) one float32 per pixel.
   server.Get("/api/frame", [&](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
       const ExploreRequest r = parsed(req, {"D", "view", "index", "signed", "seq", "encoding"});
       const uint64_t ticket = ++explorer.latestFrame;
+      // Rendered on the render thread, encoded on this one: the render thread starts the next
+      // frame (the page keeps a second request waiting) while this one is encoded and sent.
+      ViewImage image;
+      bool superseded = false;
+      double loadMs = 0, renderMs = 0;
       explorer.onRenderThread([&] {
         if (ticket != explorer.latestFrame.load()) {  // a newer state came in while this one waited
-          res.status = 204;
-          res.set_header("X-Superseded", "1");
+          superseded = true;
           return;
         }
         const Clock::time_point start = Clock::now();
         const std::shared_ptr<const Scene> scene = explorer.scene(r.overrides);
-        const double loadMs = msSince(start);
-        ViewImage image = renderView(*scene, r.view, explorer.pipelines());
-        const double renderMs = msSince(start) - loadMs;
-        // encoding=png: a picture without per-pixel values travels as PNG (lossless, a fraction of
-        // the bytes; see png_stream.h); otherwise, and always with values, as raw RGBA + floats.
-        const bool png = r.png && image.values.empty();
-        std::string body = png ? encodePngRgb(image.rgba, image.width, image.height)
-                               : std::string(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size());
-        if (!image.values.empty())
-          body.append(reinterpret_cast<const char*>(image.values.data()), image.values.size() * sizeof(float));
-        const double encodeMs = msSince(start) - loadMs - renderMs;
-        res.set_header("X-Encode-Ms", std::to_string(encodeMs));
-        res.set_header("X-Width", std::to_string(image.width));
-        res.set_header("X-Height", std::to_string(image.height));
-        res.set_header("X-Values", image.values.empty() ? "" : image.valueName);
-        res.set_header("X-Info", image.info.dump(-1, ' ', true));
-        res.set_header("X-Load-Ms", std::to_string(loadMs));
-        res.set_header("X-Render-Ms", std::to_string(renderMs));
-        if (const auto it = req.params.find("seq"); it != req.params.end()) res.set_header("X-Seq", it->second);
-        res.set_header("Cache-Control", "no-store");
-        res.set_content(std::move(body), png ? "image/png" : "application/octet-stream");
+        loadMs = msSince(start);
+        image = renderView(*scene, r.view, explorer.pipelines());
+        renderMs = msSince(start) - loadMs;
       });
+      if (superseded) {
+        res.status = 204;
+        res.set_header("X-Superseded", "1");
+        return;
+      }
+      const Clock::time_point encodeStart = Clock::now();
+      // encoding=png: a picture without per-pixel values travels as PNG (lossless, a fraction of
+      // the bytes; see png_stream.h); otherwise, and always with values, as raw RGBA + floats.
+      const bool png = r.png && image.values.empty();
+      std::string body = png ? encodePngRgb(image.rgba, image.width, image.height)
+                             : std::string(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size());
+      if (!image.values.empty())
+        body.append(reinterpret_cast<const char*>(image.values.data()), image.values.size() * sizeof(float));
+      const double encodeMs = msSince(encodeStart);
+      res.set_header("X-Encode-Ms", std::to_string(encodeMs));
+      res.set_header("X-Width", std::to_string(image.width));
+      res.set_header("X-Height", std::to_string(image.height));
+      res.set_header("X-Values", image.values.empty() ? "" : image.valueName);
+      res.set_header("X-Info", image.info.dump(-1, ' ', true));
+      res.set_header("X-Load-Ms", std::to_string(loadMs));
+      res.set_header("X-Render-Ms", std::to_string(renderMs));
+      if (const auto it = req.params.find("seq"); it != req.params.end()) res.set_header("X-Seq", it->second);
+      res.set_header("Cache-Control", "no-store");
+      res.set_content(std::move(body), png ? "image/png" : "application/octet-stream");
     });
   });
   server.Get("/api/history", [&](const httplib::Request& req, httplib::Response& res) {

@@ -1,9 +1,9 @@
 // The explorer's page. Every state is a list of `-D key=value` overrides, exactly as
 // `shadowref render` takes them: the server renders the state, and the same -D values on the
-// command line give the same picture. One frame request is out at a time, sent as soon as the
-// last one is answered, so the server renders the next frame while the browser decodes and draws
-// this one; input that arrives meanwhile only marks the state as changed, so the newest state is
-// rendered next, no stale frame queues up, and a frame older than the one shown is dropped.
+// command line give the same picture. Two frame requests are out at a time, so the server renders
+// the next frame while it sends this one and the browser decodes and draws the one before; input
+// that arrives meanwhile only marks the state as changed, so the newest state is rendered next, no
+// stale frame queues up, and a frame older than the one shown is dropped.
 'use strict';
 
 const $ = (id) => document.getElementById(id);
@@ -64,21 +64,23 @@ function showError(text) {
   box.textContent = text || '';
 }
 
-// ---- frames. The server renders one request at a time, and a request waiting behind another
-// would show a state older than the newest input by the time it is rendered, so at most one
-// request is out at a time; the next is sent the moment the server has answered the last (its
-// headers arrive once the frame is rendered and encoded), so that the server renders frame n+1
-// while the browser receives, decodes and draws frame n. Input only marks the state as changed:
-// however many mouse moves arrive meanwhile, the next request asks for the newest state, and a
-// frame older than the one shown is dropped.
-let waiting = false;    // a request whose answer has not arrived
+// ---- frames. The server renders one request at a time. Two requests are out at a time: while the
+// server renders one, the next waits at the server, so that it starts the moment the last is done,
+// and the browser receives, decodes and draws the frame before; with one out, the server waited a
+// round trip for every frame. Input only marks the state as changed: however many mouse moves
+// arrive meanwhile, the next request asks for the newest state, and a frame older than the one
+// shown is dropped. The server answers a request that waited while a newer one arrived with 204
+// and renders only the newer; should the two arrive the other way round, the newest state is the
+// one answered 204, and it is asked for again.
+let inFlight = 0;       // requests whose answers have not arrived
+const kMaxInFlight = 2;
 let decoding = 0;       // answers being received, decoded and drawn, or waiting to be
 const kMaxDecoding = 2;  // more would only queue behind the decoder
-let dirty = false, version = 0, shownVersion = 0;
+let dirty = false, version = 0, shownVersion = 0, askedVersion = 0;
 let statusShown = -Infinity;  // when the server's time was last written under the title
 const inputTimes = new Map();  // state version -> time of the input that made it
 // For the tests: whether the picture shows the newest state, and the state's -D values.
-window.exploreIdle = () => !waiting && decoding === 0 && !dirty;
+window.exploreIdle = () => inFlight === 0 && decoding === 0 && !dirty;
 window.exploreOverrides = () => overrides();
 
 function changed() {
@@ -89,10 +91,11 @@ function changed() {
 }
 
 function pump() {
-  if (!dirty || waiting || decoding >= kMaxDecoding) return;
+  if (!dirty || inFlight >= kMaxInFlight || decoding >= kMaxDecoding) return;
   dirty = false;
-  waiting = true;
+  inFlight += 1;
   const asked = version;
+  askedVersion = asked;
   const d = overrides();
   $('state').textContent = d.map((o) => '-D ' + o).join(' ') || '(the scene as written)';
   // PNG for pictures without per-pixel values: a fraction of the bytes, decoded off the page's
@@ -103,25 +106,18 @@ function pump() {
   fetch('api/frame?' + query(params), { cache: 'no-store' }).then(
     (response) => receive(asked, response),
     (e) => {
-      waiting = false;
+      inFlight -= 1;
       exploreStats.errors += 1;
       showError('the server does not answer: ' + e);
     });
 }
 
-// A PNG frame as a picture to draw, decoded off the page's thread and as stored (no colour
-// conversion), so that the canvas holds the rendered bytes. ImageDecoder takes the bytes as they
-// are; a Blob for createImageBitmap (browsers without ImageDecoder) is first handed to Chromium's
-// browser process, a few milliseconds more CPU per frame.
+// A PNG frame as a picture to draw: createImageBitmap decodes the response's Blob on a worker thread
+// into the form the canvas draws without converting it again. The frames are opaque and carry no
+// colour profile, so neither premultiplying nor colour management changes a byte: the canvas holds
+// the rendered bytes.
 async function decodePng(response) {
-  if (typeof ImageDecoder === 'undefined')
-    return createImageBitmap(await response.blob(), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
-  const decoder = new ImageDecoder({ data: await response.arrayBuffer(), type: 'image/png', colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
-  try {
-    return (await decoder.decode()).image;  // a VideoFrame, closed once drawn
-  } finally {
-    decoder.close();
-  }
+  return createImageBitmap(await response.blob());
 }
 
 // Answers are decoded and drawn one after the other, in the order they were asked for: decoded
@@ -129,7 +125,7 @@ async function decodePng(response) {
 // would be dropped.
 let decoded = Promise.resolve();
 function receive(asked, response) {
-  waiting = false;
+  inFlight -= 1;
   decoding += 1;
   pump();  // the newest state renders while this frame is decoded and drawn
   decoded = decoded.then(() => show(asked, response));
@@ -139,6 +135,7 @@ async function show(asked, response) {
   try {
     if (response.status === 204 || asked < shownVersion) {
       exploreStats.superseded += 1;  // a newer state was asked for, or is shown already
+      if (response.status === 204 && asked === askedVersion && asked > shownVersion) dirty = true;
     } else if (!response.ok) {
       exploreStats.errors += 1;
       showError(await response.text());
@@ -196,6 +193,7 @@ function drawFrame(headers, picture) {
     picture.close();
   }
   lastImage = { width, height, values, valueName, info };
+  drawLightMarks();  // the markers of the state of this frame or later, drawn with it
   // While orbiting, the key stays the same frame after frame: rebuilt only when it changes.
   if (infoText !== lastInfo.text || state.view !== lastInfo.view) {
     showKey(info);
@@ -524,7 +522,14 @@ function drawLightMarks() {
       g.fillText(l.name + (l.on ? '' : ' (off)'), m.col + kMarkerRadius + 3, m.row + 4);
     }
   }
-  requestAnimationFrame(drawLightMarks);
+}
+
+// The markers are drawn with each frame shown (drawFrame), and between frames only while none is
+// on its way (a light selected): redrawn with every mouse move while orbiting, the overlay was
+// drawn and composited two to three times for every frame shown.
+function drawLightMarksWhenIdle() {
+  if (window.exploreIdle()) drawLightMarks();
+  requestAnimationFrame(drawLightMarksWhenIdle);
 }
 
 function wireLightDrag() {
@@ -554,7 +559,7 @@ function wireLightDrag() {
     changed();
   });
   window.addEventListener('mouseup', () => { dragging = null; });
-  requestAnimationFrame(drawLightMarks);
+  requestAnimationFrame(drawLightMarksWhenIdle);
 }
 // For the tests: where light i's marker is on the picture (canvas pixels), or null.
 window.exploreLightMarker = (i) => lightMarkers().find((m) => m.i === i) || null;
