@@ -8,6 +8,7 @@
 #     folder), cli (its folder), else unit;
 #   - slow when tagged [slow]: the few cases that take seconds even without a sanitizer; the
 #     sanitizer run leaves them to the Release run (scripts/test.sh --sanitize).
+#   - conformance when tagged [conformance]: compared with Mesa, as tests/conformance is.
 execute_process(COMMAND "${LABEL_EXECUTABLE}" --list-tests -v high
                 OUTPUT_VARIABLE listing ERROR_QUIET)
 if(NOT listing MATCHES "test cases:")  # Catch's exit status is the number of cases
@@ -31,6 +32,9 @@ macro(label_case)
     endif()
     if(tags MATCHES "<open>slow<close>")
       list(APPEND labels slow)
+    endif()
+    if(tags MATCHES "<open>conformance<close>")
+      list(APPEND labels conformance)  # against Mesa, as tests/conformance
     endif()
     list(REMOVE_ITEM labels "")
     string(REPLACE "<open>" "[" name "${name}")

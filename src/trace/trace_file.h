@@ -35,7 +35,7 @@ struct ReadLimits {
   int maxSide = kMaxImageSide;
   uint64_t maxPixels = uint64_t(kMaxImagePixels);
   uint64_t maxTotalPixels = 4 * uint64_t(kMaxImagePixels);
-  size_t maxTargets = 64;
+  size_t maxTargets = 1024;
 };
 
 // Parses a whole trace; throws TraceError.

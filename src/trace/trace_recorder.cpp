@@ -114,6 +114,7 @@ uint32_t TraceRecorder::addTarget(const Framebuffer& fb) {
   e.i32(fb.height());
   e.u8(uint8_t(fb.depthCodec().format));
   e.endRecord(r);
+  targetPixels_ += uint64_t(fb.width()) * uint64_t(fb.height());
   return targets_++;
 }
 
@@ -225,6 +226,16 @@ const std::vector<uint8_t>& TraceRecorder::finish() {
 }
 
 void TraceRecorder::write(const std::string& path) {
+  // What capture writes, replay must read: a frame beyond the reader's limits is refused here,
+  // before a file exists, rather than written and refused by `replay`.
+  const ReadLimits limits;
+  if (targets_ > limits.maxTargets)
+    throw std::runtime_error("cannot capture '" + path + "': the frame drew into " + std::to_string(targets_) +
+                             " framebuffers, a trace holds at most " + std::to_string(limits.maxTargets));
+  if (targetPixels_ > limits.maxTotalPixels)
+    throw std::runtime_error("cannot capture '" + path + "': the frame's framebuffers have " +
+                             std::to_string(targetPixels_) + " pixels together, a trace holds at most " +
+                             std::to_string(limits.maxTotalPixels));
   const std::vector<uint8_t>& bytes = finish();
   writeFileAtomically(path, [&](const TempFile& temp) { writeAllAt(temp.fd, bytes.data(), bytes.size(), 0); });
 }

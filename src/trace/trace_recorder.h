@@ -42,6 +42,7 @@ class TraceRecorder {
 
   std::vector<uint8_t> bytes_;
   uint32_t targets_ = 0;
+  uint64_t targetPixels_ = 0;  // of every framebuffer together, against ReadLimits
   bool finished_ = false;
   // The shaders encoded since the last end of a pass (a draw's shader lives until its pass ends,
   // so its address names it until then).

@@ -71,10 +71,14 @@ ReplayShaders::~ReplayShaders() = default;
 
 namespace {
 
-// The clip position as GL's float vertex pipeline holds it. Not inlined: GCC 12's SLP vectorizer
-// (-O2 and up) turned the double -> float -> double round trip inlined in the loop below into a
-// plain copy of the four doubles, so the replay drew unrounded positions.
+// The clip position, and a colour channel, as GL's float vertex pipeline holds them. Every
+// double -> float -> double round trip of the replay narrows through these, and they are not
+// inlined and return the floats, so the widening happens after the call: GCC 12.2's SLP
+// vectorizer compiles glm::dvec4(glm::vec4(p)) as a plain copy of the doubles when it sees both
+// conversions in one function (with -march=x86-64-v3 or v4, the build's; glm::dvec2(glm::vec2(p))
+// even at plain -O2), so the replay drew unrounded positions.
 [[gnu::noinline]] glm::vec4 toFloat(const glm::dvec4& p) { return glm::vec4(p); }
+[[gnu::noinline]] float toFloat(double x) { return float(x); }
 
 }  // namespace
 
@@ -91,7 +95,7 @@ std::vector<ClipVertex> fixedFunctionVertices(const DrawCommand& draw, const Fra
     for (int k = 0; k < 4; ++k) {
       // NaN (a shader's 0/0) becomes 0, as the clamp of a colour write makes it.
       const double clamped = c[k] > 0.0 ? std::min(c[k], 1.0) : 0.0;
-      out[i].varyings[size_t(k)] = double(float(clamped));
+      out[i].varyings[size_t(k)] = double(toFloat(clamped));
     }
   }
   return out;

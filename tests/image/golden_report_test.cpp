@@ -3,6 +3,7 @@
 // difference pictures and the index that links it; a matching golden produces nothing.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -108,4 +109,31 @@ TEST_CASE("a frame hash that no longer matches is reported with the reference pi
   CHECK(contains(html, "FAILED: 1 of 1200 pixels"));
   for (const char* picture : {"reference.png", "result.png", "difference.png"})
     CHECK(fs::exists(fs::path(page).parent_path() / picture));
+}
+
+// scripts/update-goldens.sh's dry run points the golden tests' reports at its folder through
+// SHADOWREF_GOLDEN_REPORT_DIR; without it they go under the build tree.
+TEST_CASE("the golden tests' report folder: SHADOWREF_GOLDEN_REPORT_DIR, else <build>/golden-report",
+          "[image][golden-report]") {
+  TempDir dir("report-folder");
+  const char* before = std::getenv("SHADOWREF_GOLDEN_REPORT_DIR");
+  const std::string saved = before ? before : "";
+  ::unsetenv("SHADOWREF_GOLDEN_REPORT_DIR");
+  CHECK(testing::goldenReportFolder() == std::string(SHADOWREF_BINARY_DIR) + "/golden-report");
+  const std::string folder = dir.file("dry-run");
+  ::setenv("SHADOWREF_GOLDEN_REPORT_DIR", folder.c_str(), 1);
+  CHECK(testing::goldenReportFolder() == folder);
+  // A broken golden checked with the default folder, as the golden tests check theirs, lands there.
+  const FrameResult frame = renderMinimal();
+  Framebuffer broken = frame.framebuffer;
+  broken.stencil()[0] = uint8_t(broken.stencil()[0] + 1);
+  const std::string golden = dir.file("minimal-broken.exr");
+  writeExr(broken, golden);
+  const testing::GoldenOutcome outcome = testing::checkGoldenExr("minimal-broken", frame.framebuffer, {}, golden);
+  CHECK(outcome.page == (fs::path(folder) / "minimal-broken" / "index.html").string());
+  CHECK(fs::exists(outcome.page));
+  if (before)
+    ::setenv("SHADOWREF_GOLDEN_REPORT_DIR", saved.c_str(), 1);
+  else
+    ::unsetenv("SHADOWREF_GOLDEN_REPORT_DIR");
 }

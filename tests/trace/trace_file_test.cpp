@@ -5,9 +5,11 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <filesystem>
 
 #include "gl/fragment_shader.h"
 #include "gl/lighting.h"
+#include "support/cli_run.h"
 #include "trace/replay_target.h"
 #include "trace/trace_file.h"
 #include "trace/trace_recorder.h"
@@ -228,6 +230,34 @@ TEST_CASE("trace: a frame with glAccum is refused on egl:, replayed on osmesa:",
   const ReplayResult r = replayOn(t, *parseReplayTarget("osmesa:llvmpipe"), ReplayMode::FixedFunction, 1);
   REQUIRE(r.buffers.size() == 1);
   CHECK(r.buffers[0].color.size() == 8 * 6);
+}
+
+// What capture writes, replay reads: a frame of as many framebuffers as the reader accepts is
+// written and reads back with each of them; one more is refused before any file exists.
+TEST_CASE("trace: the recorder refuses a frame beyond the reader's framebuffer limit, writing nothing", "[trace]") {
+  const std::filesystem::path dir = testing::freshScratchDir("trace_limits");
+  const size_t limit = ReadLimits{}.maxTargets;
+  for (const size_t count : {limit, limit + 1}) {
+    TraceRecorder recorder;
+    const std::unique_ptr<PipelineMaker> inner = makePipelineMaker(PipelineKind::Reference);
+    const std::unique_ptr<PipelineMaker> maker = recorder.wrap(*inner);
+    std::vector<Framebuffer> fbs;
+    fbs.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+      fbs.emplace_back(1, 1);
+      (void)maker->make(fbs.back());
+    }
+    const std::filesystem::path path = dir / ("frame" + std::to_string(count) + ".srtrace");
+    if (count <= limit) {
+      recorder.write(path.string());
+      CHECK(readTraceFile(path.string()).targets.size() == count);
+    } else {
+      CHECK_THROWS_WITH(recorder.write(path.string()),
+                        Catch::Contains("drew into " + std::to_string(count) + " framebuffers") &&
+                            Catch::Contains("at most " + std::to_string(limit)));
+      CHECK_FALSE(std::filesystem::exists(path));
+    }
+  }
 }
 
 }  // namespace shadowref::trace

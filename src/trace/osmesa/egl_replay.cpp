@@ -82,6 +82,17 @@ class EglContext : public GlContext {
       storage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
       attach(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffers_[1]);
       attach(GL_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, renderbuffers_[1]);
+      // The framebuffer object is drawn upside down in gallium's y-down surface, as a window's
+      // buffer is (GL_MESA_framebuffer_flip_y). OSMesa's buffer is a window's, so llvmpipe then sets
+      // up every triangle from the same window coordinates on both targets and their buffers are
+      // byte for byte the same; unflipped, the viewport transform and the plane evaluation start
+      // from the other corner and rounding differs (docs/trace-format.md). The core entry point:
+      // Mesa's compatibility profile refuses glFramebufferParameteriMESA (INVALID_OPERATION).
+      if (!hasExtension(reinterpret_cast<const char*>(glGetString(GL_EXTENSIONS)), "GL_MESA_framebuffer_flip_y"))
+        throw std::runtime_error("EGL: the context lacks GL_MESA_framebuffer_flip_y");
+      eglFunction<PFNGLFRAMEBUFFERPARAMETERIPROC>("glFramebufferParameteri")(GL_FRAMEBUFFER, GL_FRAMEBUFFER_FLIP_Y_MESA,
+                                                                             GL_TRUE);
+      if (glGetError() != GL_NO_ERROR) throw std::runtime_error("EGL: the framebuffer object cannot be y-flipped");
       if (status(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("EGL: the RGBA8 + DEPTH24_STENCIL8 framebuffer object is incomplete");
       glDrawBuffer(GL_COLOR_ATTACHMENT0);
