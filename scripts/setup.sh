@@ -73,9 +73,11 @@ shift || true
 # What the role builds. A render-only build leaves out tests and benchmarks (and their
 # dependencies); a test or bench run turns them on in a build folder a render made (the
 # benchmarks too: bench/tests is part of the suite). Arguments after BUILD_DIR come later on
-# cmake's command line and win (scripts/test.sh --sanitize leaves the benchmarks out).
+# cmake's command line and win (scripts/test.sh --sanitize leaves the benchmarks out). A render
+# builds from scratch once: its libraries are compiled as unity builds (SHADOWREF_UNITY_BUILD,
+# a few files per compiler run), which the folder keeps (-DSHADOWREF_UNITY_BUILD=OFF for editing).
 case $role in
-  render) role_args=(-DSHADOWREF_TESTS=OFF -DSHADOWREF_BENCH=OFF); targets=(--target shadowref) ;;
+  render) role_args=(-DSHADOWREF_TESTS=OFF -DSHADOWREF_BENCH=OFF -DSHADOWREF_UNITY_BUILD=ON); targets=(--target shadowref) ;;
   test | bench) role_args=(-DSHADOWREF_TESTS=ON -DSHADOWREF_BENCH=ON); targets=() ;;
 esac
 configure=false
