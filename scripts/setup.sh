@@ -73,12 +73,13 @@ shift || true
 # What the role builds. A render-only build leaves out tests and benchmarks (and their
 # dependencies); a test or bench run turns them on in a build folder a render made (the
 # benchmarks too: bench/tests is part of the suite). Arguments after BUILD_DIR come later on
-# cmake's command line and win (scripts/test.sh --sanitize leaves the benchmarks out). A render
-# builds from scratch once: its libraries are compiled as unity builds (SHADOWREF_UNITY_BUILD,
-# a few files per compiler run), which the folder keeps (-DSHADOWREF_UNITY_BUILD=OFF for editing).
+# cmake's command line and win (scripts/test.sh --sanitize leaves the benchmarks out). Every role
+# builds from scratch once: the libraries are compiled as unity builds (SHADOWREF_UNITY_BUILD, a
+# few files per compiler run), which the folder keeps (-DSHADOWREF_UNITY_BUILD=OFF for editing);
+# the test role building them so is what proves every batch compiles.
 case $role in
   render) role_args=(-DSHADOWREF_TESTS=OFF -DSHADOWREF_BENCH=OFF -DSHADOWREF_UNITY_BUILD=ON); targets=(--target shadowref) ;;
-  test | bench) role_args=(-DSHADOWREF_TESTS=ON -DSHADOWREF_BENCH=ON); targets=() ;;
+  test | bench) role_args=(-DSHADOWREF_TESTS=ON -DSHADOWREF_BENCH=ON -DSHADOWREF_UNITY_BUILD=ON); targets=() ;;
 esac
 configure=false
 if [ ! -f "$build_dir/build.ninja" ] || [ $# -gt 0 ]; then
