@@ -22,7 +22,9 @@ void addExploreCommand(CLI::App& app, explore::ExploreOptions& args) {
   cmd->add_option("--host", args.host, "Address to listen on (default 127.0.0.1: this machine only)");
   cmd->add_option("--port", args.port, "Port (default 8080; 0: any free port, printed with the URL)")
       ->check(wholeNumberIn(0, 65535));
-  cmd->add_option("--threads", args.threads, "Rasterizer threads (0: every core); the pictures do not depend on it")
+  cmd->add_option("--threads", args.threads,
+                  "Rasterizer threads (default: every core but one, which the browser needs; 0: every core); the "
+                  "pictures do not depend on it")
       ->check(wholeNumberIn(0, 256));
   cmd->add_option("--export", args.exportDir,
                   "Write a self-contained page (views and per-pixel values) into this new or empty folder and "

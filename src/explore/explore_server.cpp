@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -58,7 +59,7 @@ struct BadRequest : std::runtime_error {
 class Explorer {
  public:
   explicit Explorer(const ExploreOptions& options)
-      : options_(options), pipelines_(makePipelineMaker(PipelineKind::Fast, options.threads)) {}
+      : options_(options), pipelines_(makePipelineMaker(PipelineKind::Fast, serverThreads(options.threads))) {}
 
   ~Explorer() {
     {
@@ -310,6 +311,7 @@ void addRoutes(httplib::Server& server, Explorer& explorer) {
       res.set_header("X-Info", image.info.dump(-1, ' ', true));
       res.set_header("X-Load-Ms", std::to_string(loadMs));
       res.set_header("X-Render-Ms", std::to_string(renderMs));
+      res.set_header("X-Threads", std::to_string(explorer.pipelines().threads()));
       if (const auto it = req.params.find("seq"); it != req.params.end()) res.set_header("X-Seq", it->second);
       res.set_header("Cache-Control", "no-store");
       res.set_content(std::move(body), png ? "image/png" : "application/octet-stream");
@@ -395,6 +397,11 @@ class SignalStop {
 };
 
 }  // namespace
+
+int serverThreads(int requested) {
+  if (requested >= 0) return requested;
+  return std::max(1, pipelineThreads(PipelineKind::Fast, 0) - 1);
+}
 
 int runExploreServer(const ExploreOptions& options) {
   SignalStop stop;  // before any thread starts, so every thread inherits the mask

@@ -15,9 +15,15 @@ struct ExploreOptions {
   std::vector<std::string> overrides;  // -D given to explore: the start of every state
   std::string host = "127.0.0.1";
   int port = 8080;                     // 0: any free port
-  int threads = 0;                     // rasterizer threads, 0: every core
+  int threads = -1;                    // rasterizer threads; 0: every core; -1: see serverThreads
   std::string exportDir;               // non-empty: write a self-contained page there and exit
 };
+
+// The server's rasterizer threads for `requested` (ExploreOptions::threads): by default every core
+// but one, at least one. The page's browser runs on the same machine and needs about a core of its
+// own for a live frame rate (receiving, decoding and drawing 30 frames a second); a render that
+// also takes that core waits for it in every pass (docs/performance.md).
+int serverThreads(int requested);
 
 // Serves until SIGINT or SIGTERM (exit status 0), printing the URL on stdout. 2 when the address
 // cannot be bound.

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <httplib.h>
+#include <sched.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -190,6 +191,29 @@ TEST_CASE("explore serves for a state the pixels render writes with the same -D 
     CHECK(differing == 0);
   }
   for (auto& [scene, server] : servers) CHECK(server->stop(SIGTERM) == 0);
+}
+
+TEST_CASE("explore renders with every core but one unless told, leaving one to the browser", "[cli][explore]") {
+  // The cores this test (and so the server it starts) may run on.
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  REQUIRE(::sched_getaffinity(0, sizeof allowed, &allowed) == 0);
+  const int cores = CPU_COUNT(&allowed);
+  const std::vector<std::pair<std::vector<std::string>, int>> cases{
+      {{}, std::max(1, cores - 1)}, {{"--threads", "0"}, cores}, {{"--threads", "3"}, 3}, {{"--threads", "1"}, 1}};
+  for (const auto& [args, threads] : cases) {
+    CAPTURE(args);
+    std::vector<std::string> all{"-D", "image.width=40", "-D", "image.height=32"};
+    all.insert(all.end(), args.begin(), args.end());
+    Server server(all);
+    httplib::Client client("127.0.0.1", server.port());
+    client.set_read_timeout(120);
+    const httplib::Result r = client.Get("/api/frame?view=frame&encoding=png");
+    REQUIRE(r);
+    REQUIRE(r->status == 200);
+    CHECK(r->get_header_value("X-Threads") == std::to_string(threads));
+    CHECK(server.stop(SIGTERM) == 0);
+  }
 }
 
 TEST_CASE("explore's pixel history is render --pixel-history's, step for step", "[cli][explore]") {

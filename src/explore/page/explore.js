@@ -156,7 +156,9 @@ async function show(asked, response) {
         // A few times a second: text changed with every frame would be laid out with every frame.
         const now = performance.now();
         if (now - statusShown > 250) {
-          $('status').textContent = 'server ' + num(exploreStats.serverMs[exploreStats.serverMs.length - 1]) + ' ms';
+          const threads = Number(response.headers.get('X-Threads'));
+          $('status').textContent = 'server ' + num(exploreStats.serverMs[exploreStats.serverMs.length - 1]) + ' ms, ' +
+            threads + (threads === 1 ? ' thread' : ' threads');
           statusShown = now;
         }
       } else {
