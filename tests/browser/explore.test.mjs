@@ -184,13 +184,23 @@ try {
   step('above the lid z-pass and z-fail agree; back inside the volume');
 
   // The stencil counts of z-pass: the legend lists the counts present, 255 (-1 wrapped) among them.
+  // The mouse rests over the picture: the new view shows the count under it without a move, the
+  // count `render --dump-region` prints there.
+  const rest = await imageBox(page);
+  const [restCol, restRow] = [700, 150];
+  await page.mouse.move(rest.x + restCol + 0.5, rest.y + restRow + 0.5);
   await page.select('#view', 'stencil');
   await settle(page);
   const legend = await page.$$eval('#legend span', (s) => s.map((x) => x.textContent));
   assert.ok(legend.length >= 2 && legend.length < 20, 'a compact legend: ' + legend);
+  const restY = 640 - 1 - restRow;
+  const region = cliRender(await page.evaluate(() => window.exploreOverrides()), ['--dump-region', `${restCol},${restY},1,1`]).stdout;
+  const dumped = region.trim().split('\n').pop().trim().split(/\s+/)[1];
+  const probed = await page.$eval('#probe', (p) => p.textContent);
+  assert.equal(probed, `pixel ${restCol},${restY} (row 0 is the bottom)  count ${dumped}`, 'the count under the resting mouse');
   await pictureShot(page, 'explore-pumpkins-zpass-stencil.png');
   await page.screenshot({ path: path.join(shots, 'explore-page-stencil.png') });
-  step('stencil view, legend ' + legend.join(' '));
+  step('stencil view, legend ' + legend.join(' ') + '; ' + probed);
 
   // Mode 1 of the Devil Shadow System: the volumes.
   await pressAndWait(page, '1');

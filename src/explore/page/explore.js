@@ -157,7 +157,7 @@ async function show(asked, response) {
         const now = performance.now();
         if (now - statusShown > 250) {
           const threads = Number(response.headers.get('X-Threads'));
-          $('status').textContent = 'server ' + num(exploreStats.serverMs[exploreStats.serverMs.length - 1]) + ' ms, ' +
+          $('status').textContent = 'server ' + exploreStats.serverMs[exploreStats.serverMs.length - 1].toFixed(1) + ' ms, ' +
             threads + (threads === 1 ? ' thread' : ' threads');
           statusShown = now;
         }
@@ -194,7 +194,9 @@ function drawFrame(headers, picture) {
     context.drawImage(picture, 0, 0);
     picture.close();
   }
+  const viewChanged = !lastImage || valueName !== lastImage.valueName || state.view !== lastInfo.view;
   lastImage = { width, height, values, valueName, info };
+  if (mouseOver && (values || viewChanged)) probe(mouseOver);
   drawLightMarks();  // the markers of the state of this frame or later, drawn with it
   // While orbiting, the key stays the same frame after frame: rebuilt only when it changes.
   if (infoText !== lastInfo.text || state.view !== lastInfo.view) {
@@ -269,7 +271,12 @@ function pixelAt(event) {
   return { col, row, x: col, y: canvas.height - 1 - row };  // y: framebuffer row, 0 at the bottom
 }
 
+// The mouse over the picture ({clientX, clientY}, null when it left): a frame of another view
+// shows its value there without waiting for the mouse to move.
+let mouseOver = null;
+
 function probe(event) {
+  mouseOver = { clientX: event.clientX, clientY: event.clientY };
   const p = pixelAt(event);
   if (!p || !lastImage) return;
   let text = 'pixel ' + p.x + ',' + p.y + ' (row 0 is the bottom)';
@@ -692,10 +699,12 @@ function wireControls() {
     }
     drag = null;
   });
+  canvas.addEventListener('mouseleave', () => { mouseOver = null; });
   canvas.addEventListener('mousemove', (e) => {
     // Not while orbiting: the picture moves under the mouse, and a line of text changed with every
     // mouse move is laid out and painted with every mouse move.
     if (!drag || !drag.moved) probe(e);
+    else mouseOver = null;  // orbiting: no value shown until the mouse moves again after it
     if (!drag || exported) return;
     const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
     if (!drag.moved && Math.abs(dx) + Math.abs(dy) < 3) return;
