@@ -9,6 +9,7 @@
 
 #include "scene/scene_error.h"
 #include "scene/scene_loader.h"
+#include "scene/yaml_fields.h"
 #include "shadow/technique_registry.h"
 
 namespace shadowref::cli {
@@ -48,41 +49,14 @@ std::string defaultOutputPath(const std::string& scenePath, const std::string& e
   return "out/" + stem + extension;
 }
 
-namespace {
-
-// The Levenshtein distance: how many single-letter edits turn a into b.
-size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-}  // namespace
-
 bool reportUnknownSubcommand(const CLI::App& app, int argc, const char* const* argv) {
   if (argc < 2 || argv[1][0] == '-' || argv[1][0] == '\0') return false;
   const std::string word = argv[1];
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
   if (std::find(names.begin(), names.end(), word) != names.end()) return false;
-  std::string best;
-  size_t bestDistance = 3;  // suggest only a name within two edits
-  for (const std::string& name : names) {
-    const size_t d = editDistance(word, name);
-    if (d < bestDistance) {
-      bestDistance = d;
-      best = name;
-    }
-  }
+  const std::vector<std::string_view> candidates(names.begin(), names.end());
+  const std::string best(closestName(word, candidates));  // the scene file's "did you mean", too
   std::cerr << "unknown subcommand '" << word << "'";
   if (!best.empty()) std::cerr << " (did you mean '" << best << "'?)";
   std::cerr << "; the subcommands are";
