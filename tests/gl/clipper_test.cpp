@@ -41,23 +41,6 @@ Framebuffer countCoverage(const std::vector<ClipVertex>& triangles, int size, Re
   return fb;
 }
 
-// Every pixel centre farther than kEdgeMargin from the outline: 1 inside, 0 outside; none above 1.
-void requireCoverage(const Framebuffer& fb, const Polygon2& outline) {
-  int wrong = 0, inside = 0;
-  const std::string pic = picture(fb.width(), fb.height(), [&](int x, int y) {
-    const int count = fb.stencilAt(x, y);
-    const int expected = expectedCoverage(outline, {x + 0.5, y + 0.5}, kEdgeMargin);
-    inside += expected == 1;
-    const bool ok = count <= 1 && (expected < 0 || count == expected);
-    wrong += !ok;
-    if (ok) return count == 0 ? '.' : '1';
-    return count == 0 ? 'o' : 'X';
-  });
-  INFO("o: missing, X: wrong count\n" << pic);
-  CHECK(wrong == 0);
-  CHECK(inside > 0);
-}
-
 int coveredCount(const Framebuffer& fb) {
   int n = 0;
   for (uint8_t c : fb.stencil()) n += c;

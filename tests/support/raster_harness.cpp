@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include <catch2/catch.hpp>
+
 namespace shadowref::testing {
 
 RenderState fullViewportState(const Framebuffer& fb) {
@@ -100,6 +102,22 @@ std::vector<uint32_t> gridTriangles(int nx, int ny, Winding winding, TestRandom&
       }
     }
   return indices;
+}
+
+void requireCoverage(const Framebuffer& fb, const Polygon2& outline) {
+  int wrong = 0, inside = 0;
+  const std::string pic = picture(fb.width(), fb.height(), [&](int x, int y) {
+    const int count = fb.stencilAt(x, y);
+    const int expected = expectedCoverage(outline, {x + 0.5, y + 0.5}, kEdgeMargin);
+    inside += expected == 1;
+    const bool ok = count <= 1 && (expected < 0 || count == expected);
+    wrong += !ok;
+    if (ok) return count == 0 ? '.' : '1';
+    return count == 0 ? 'o' : 'X';
+  });
+  INFO("o: missing, X: wrong count\n" << pic);
+  CHECK(wrong == 0);
+  CHECK(inside > 0);
 }
 
 }  // namespace shadowref::testing

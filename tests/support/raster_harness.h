@@ -22,6 +22,7 @@
 #include "gl/render_state.h"
 #include "exec/renderer.h"
 #include "gl/vertex.h"
+#include "support/polygon_geometry.h"
 
 namespace shadowref::testing {
 
@@ -61,6 +62,11 @@ std::vector<uint32_t> gridTriangles(int nx, int ny, Winding winding, TestRandom&
 // A state that counts coverage: stencil test on, func ALWAYS, every op INCR on both faces (the
 // counting pass of the watertightness tests), no culling, no colour.
 RenderState coverageCountingState(const Framebuffer& fb);
+
+// Checks (Catch) a coverage count left by coverageCountingState against the outline it drew: every
+// pixel centre farther than kEdgeMargin from the outline counts 1 inside and 0 outside, none more
+// than 1, and some lie inside. A failure prints the picture: 'o' missing, 'X' a wrong count.
+void requireCoverage(const Framebuffer& fb, const Polygon2& outline);
 
 // One character per pixel, the top row first (row 0 is the bottom, as in the framebuffer), rows
 // separated by '\n'.
