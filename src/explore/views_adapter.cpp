@@ -389,9 +389,12 @@ nlohmann::json sceneSummary(const Scene& scene) {
   s["shadow"] = {{"method", sh.method},     {"two_sided", sh.twoSidedStencil}, {"wrap", sh.wrapOps},
                  {"darken_composite", sh.darkenComposite}, {"map_size", sh.mapSize}, {"pcf", sh.pcf}};
   nlohmann::json methods = nlohmann::json::array();
-  for (const ShadowTechnique* t : techniques())
+  for (const ShadowTechnique* t : techniques()) {
+    nlohmann::json reads = nlohmann::json::array();  // the shadow.* keys it reads: the page offers those
+    for (const TechniqueSetting& setting : t->settings) reads.push_back(std::string(setting.key));
     methods.push_back({{"name", std::string(t->name)}, {"summary", std::string(t->summary)},
-                       {"stencil", t->countsInStencil}});
+                       {"stencil", t->countsInStencil}, {"settings", reads}});
+  }
   s["methods"] = methods;
   nlohmann::json shapes = nlohmann::json::array();
   for (const auto& [n, v] : softShapeNames()) shapes.push_back(std::string(n));

@@ -251,9 +251,18 @@ try {
   await settle(page);
   const outlines = await page.$$eval('#legend .outline', (s) => s.map((x) => x.textContent));
   assert.deepEqual(outlines, ['camera frustum'], 'the map view names its outline');
+  // The controls offered are the settings the method reads (the technique registry's list).
+  const enabled = () => page.evaluate(() => Object.fromEntries(
+    ['two-sided', 'wrap', 'darken', 'map-size', 'pcf'].map((id) => [id, !document.getElementById(id).disabled])));
+  assert.deepEqual(await enabled(), { 'two-sided': false, wrap: false, darken: false, 'map-size': true, pcf: true },
+    'shadowmap reads the map size and PCF, not the stencil settings');
   await page.select('#view', 'frame');
   await page.select('#method', 'zfail');
   await settle(page);
+  assert.deepEqual(await enabled(), { 'two-sided': true, wrap: true, darken: true, 'map-size': false, pcf: false },
+    'z-fail reads the stencil settings, not the map size or PCF');
+  const unread = await page.$eval('#map-size', (c) => c.closest('label').title);
+  assert.equal(unread, 'shadow.map_size: zfail does not read it (shadowmap, tsm do)');
 
   // Drag the candle's marker: the light moves in the picture plane, and the picture is
   // `shadowref render` with the moved light's -D value.

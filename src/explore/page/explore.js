@@ -596,10 +596,29 @@ function fillViews() {
   $('signed-label').hidden = !['stencil', 'pass'].includes(state.view);
 }
 
+// The method controls of the shadow.* keys the method does not read are disabled: they would
+// change nothing in its frames (the registry's list; render's flags for them are errors).
+const settingControls = [['two-sided', 'two_sided'], ['wrap', 'wrap'], ['darken', 'darken_composite'],
+  ['map-size', 'map_size'], ['pcf', 'pcf']];
+
+function offerSettings() {
+  const m = scene.methods.find((x) => x.name === state.method);
+  const reads = m ? m.settings : [];
+  for (const [id, key] of settingControls) {
+    const control = $(id);
+    control.disabled = !reads.includes(key);
+    const users = scene.methods.filter((x) => x.settings.includes(key)).map((x) => x.name);
+    control.closest('label').title = control.disabled
+      ? 'shadow.' + key + ': ' + state.method + ' does not read it (' + users.join(', ') + ' do)'
+      : 'shadow.' + key;
+  }
+}
+
 function setMethod(name) {
   state.method = name;
   $('method').value = name;
   fillViews();
+  offerSettings();
   changed();
 }
 
@@ -783,6 +802,7 @@ async function start() {
   $('image').height = $('marks').height = scene.height;
   fillLights();
   fillViews();
+  offerSettings();
   wireControls();
   changed();
 }
