@@ -3,7 +3,6 @@
 #include <pthread.h>
 #include <signal.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <unistd.h>
@@ -76,7 +75,7 @@ int exportPage(const ExploreOptions& options) {
   int status = 0;
   try {
     fs::create_directory(temp);
-    std::unique_ptr<PipelineMaker> pipelines = makePipelineMaker(PipelineKind::Fast, std::max(options.threads, 0));
+    std::unique_ptr<PipelineMaker> pipelines = makePipelineMaker(PipelineKind::Fast, options.threads.value_or(0));
     const bool counts = techniqueOf(scene.shadow).countsInStencil;
     struct Entry {
       std::string id, label;

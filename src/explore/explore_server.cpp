@@ -398,9 +398,8 @@ class SignalStop {
 
 }  // namespace
 
-int serverThreads(int requested) {
-  if (requested >= 0) return requested;
-  return std::max(1, pipelineThreads(PipelineKind::Fast, 0) - 1);
+int serverThreads(std::optional<int> requested) {
+  return requested.value_or(std::max(1, pipelineThreads(PipelineKind::Fast, 0) - 1));
 }
 
 int runExploreServer(const ExploreOptions& options) {

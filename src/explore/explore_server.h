@@ -4,6 +4,7 @@
 // a state is the picture `shadowref render` makes with the same -D values.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,15 +16,16 @@ struct ExploreOptions {
   std::vector<std::string> overrides;  // -D given to explore: the start of every state
   std::string host = "127.0.0.1";
   int port = 8080;                     // 0: any free port
-  int threads = -1;                    // rasterizer threads; 0: every core; -1: see serverThreads
+  std::optional<int> threads;          // rasterizer threads, 0: every core; unset: serverThreads, or every
+                                       // core for --export
   std::string exportDir;               // non-empty: write a self-contained page there and exit
 };
 
-// The server's rasterizer threads for `requested` (ExploreOptions::threads): by default every core
-// but one, at least one. The page's browser runs on the same machine and needs about a core of its
+// The server's rasterizer threads for `requested` (ExploreOptions::threads): unset, every core but
+// one, at least one. The page's browser runs on the same machine and needs about a core of its
 // own for a live frame rate (receiving, decoding and drawing 30 frames a second); a render that
 // also takes that core waits for it in every pass (docs/performance.md).
-int serverThreads(int requested);
+int serverThreads(std::optional<int> requested);
 
 // Serves until SIGINT or SIGTERM (exit status 0), printing the URL on stdout. 2 when the address
 // cannot be bound.
