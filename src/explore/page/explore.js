@@ -197,7 +197,9 @@ function drawFrame(headers, picture) {
   const viewChanged = !lastImage || valueName !== lastImage.valueName || state.view !== lastInfo.view;
   lastImage = { width, height, values, valueName, info };
   if (mouseOver && (values || viewChanged)) probe(mouseOver);
-  drawLightMarks();  // the markers of the state of this frame or later, drawn with it
+  // The markers of the state of this frame or later, drawn with it: redrawn with every mouse move
+  // while orbiting, the overlay was drawn and composited two to three times for every frame shown.
+  drawLightMarks();
   // While orbiting, the key stays the same frame after frame: rebuilt only when it changes.
   if (infoText !== lastInfo.text || state.view !== lastInfo.view) {
     showKey(info);
@@ -533,14 +535,6 @@ function drawLightMarks() {
   }
 }
 
-// The markers are drawn with each frame shown (drawFrame), and between frames only while none is
-// on its way (a light selected): redrawn with every mouse move while orbiting, the overlay was
-// drawn and composited two to three times for every frame shown.
-function drawLightMarksWhenIdle() {
-  if (window.exploreIdle()) drawLightMarks();
-  requestAnimationFrame(drawLightMarksWhenIdle);
-}
-
 function wireLightDrag() {
   const canvas = $('image');
   let dragging = null;
@@ -568,7 +562,6 @@ function wireLightDrag() {
     changed();
   });
   window.addEventListener('mouseup', () => { dragging = null; });
-  requestAnimationFrame(drawLightMarksWhenIdle);
 }
 // For the tests: where light i's marker is on the picture (canvas pixels), or null.
 window.exploreLightMarker = (i) => lightMarkers().find((m) => m.i === i) || null;
@@ -630,8 +623,10 @@ function setView(name) {
 }
 
 function selectLight(i) {
+  const another = i !== state.light;
   state.light = i;
   $('light').value = String(i);
+  if (another) drawLightMarks();  // the selected light's marker is drawn bold; no frame is asked for
   const l = state.lights[i];
   const b = scene.bounds;
   // A directional light has no position, a point light no direction (the scene format's rule).
